@@ -1,0 +1,497 @@
+//! Named configurations (`fastsim`, `polach`, `ecf` with presets) read from JSON files with serde_json.
+//!
+//! A configuration file is `{"model": "ecf"|"fastsim"|"polach", "preset": NAME, "effects":
+//! [...], "params": {NAME: VALUE, ...}, "bound": "elliptic"|"parabolic", "grid": {"nx": N,
+//! "ny": N}, "geometry": {...}}`. Everything but `model` is optional. A preset is such a file
+//! shipped with the crate (`presets/*.json`); a user file naming a preset starts from it and
+//! overrides what it gives. `effects` replaces the preset's list, unless every entry starts
+//! with `+` or `-`, which adds or removes effects. Parameter values are numbers in the unit
+//! their name carries, or the string "inf".
+
+use crate::effects::{self, Effect, EffectSet};
+use crate::error::{CreepError, Result};
+use crate::params::{self, Params};
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value};
+
+/// The three model families.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelKind {
+    /// Extended Creep Force model (bristle engine with 3BL effects).
+    Ecf,
+    /// FASTSIM (bristle engine with the Coulomb bound).
+    Fastsim,
+    /// Polach's closed-form model.
+    Polach,
+}
+
+impl ModelKind {
+    /// Parses a model name.
+    pub fn parse(s: &str) -> Result<Self> {
+        match s {
+            "ecf" => Ok(ModelKind::Ecf),
+            "fastsim" => Ok(ModelKind::Fastsim),
+            "polach" => Ok(ModelKind::Polach),
+            _ => Err(CreepError::Unknown {
+                kind: "model".into(),
+                name: s.into(),
+                accepted: "ecf, fastsim, polach".into(),
+            }),
+        }
+    }
+    /// Name of the model.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ModelKind::Ecf => "ecf",
+            ModelKind::Fastsim => "fastsim",
+            ModelKind::Polach => "polach",
+        }
+    }
+}
+
+/// Shape of the Coulomb bound of FASTSIM.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bound {
+    /// mu times the elliptic Hertz pressure (consistent with ECF; default).
+    Elliptic,
+    /// mu times Kalker's parabolic pressure 2 F_N/(pi a b) (1 - x^2/a^2 - y^2/b^2).
+    Parabolic,
+}
+
+/// Bristle grid size: `nx` cells along each strip (rolling direction), `ny` strips.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Grid {
+    /// Cells per strip in rolling direction.
+    pub nx: usize,
+    /// Number of strips across the contact.
+    pub ny: usize,
+}
+
+/// Default grid: within 1 % of a 4x refined grid over 0.1 %-30 % creepage (docs/model.md).
+pub const DEFAULT_GRID: Grid = Grid { nx: 40, ny: 21 };
+
+impl Grid {
+    /// Parses "NXxNY".
+    pub fn parse(s: &str) -> Result<Self> {
+        let err = || CreepError::Config {
+            source_name: "--grid".into(),
+            message: format!(
+                "'{s}': expected NXxNY with 2 <= NX <= 2000 and 1 <= NY <= 1000, e.g. 40x21"
+            ),
+        };
+        let (a, b) = s.split_once(['x', 'X']).ok_or_else(err)?;
+        let g = Grid {
+            nx: a.trim().parse().map_err(|_| err())?,
+            ny: b.trim().parse().map_err(|_| err())?,
+        };
+        g.validate().map_err(|_| err())?;
+        Ok(g)
+    }
+    /// Checks the bounds.
+    pub fn validate(&self) -> Result<()> {
+        if self.nx < 2 || self.nx > 2000 || self.ny < 1 || self.ny > 1000 {
+            return Err(CreepError::OutOfRange {
+                field: "grid".into(),
+                value: (self.nx * 10000 + self.ny) as f64,
+                expected: format!(
+                    "grid {}x{}: need 2 <= nx <= 2000 and 1 <= ny <= 1000",
+                    self.nx, self.ny
+                ),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// How the contact size follows the normal force.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Geometry {
+    /// Semi-axes `a`, `b` (m) at the reference load `fn_ref` (N); other loads scale them by
+    /// (F_N / fn_ref)^(1/3) (Hertz).
+    SemiAxes {
+        /// Semi-axis in rolling direction at the reference load, m.
+        a: f64,
+        /// Lateral semi-axis at the reference load, m.
+        b: f64,
+        /// Reference load, N.
+        fn_ref: f64,
+    },
+    /// Exact elliptic Hertz from equivalent radii of curvature (m).
+    Curvatures {
+        /// Equivalent radius in rolling direction, m.
+        rx: f64,
+        /// Equivalent lateral radius, m.
+        ry: f64,
+    },
+    /// Line contact (twin disc): equivalent radius `r` (m), contact width `width` (m);
+    /// F_N is the total force over the width.
+    Line {
+        /// Equivalent radius, m.
+        r: f64,
+        /// Contact width, m.
+        width: f64,
+    },
+}
+
+/// Default geometry: the seed's Vectron wheel, a = 7.63 mm, b = 7.88 mm at 110 kN (Tab. 4.1).
+pub const DEFAULT_GEOMETRY: Geometry = Geometry::SemiAxes {
+    a: 7.63e-3,
+    b: 7.88e-3,
+    fn_ref: 110e3,
+};
+
+/// A resolved configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Config {
+    /// Model family.
+    pub model: ModelKind,
+    /// Name of the preset it came from (or "custom").
+    pub preset: String,
+    /// Effects switched on (bristle models).
+    pub effects: EffectSet,
+    /// Parameter values.
+    pub params: Params,
+    /// Coulomb bound shape.
+    pub bound: Bound,
+    /// Bristle grid.
+    pub grid: Grid,
+    /// Contact geometry.
+    pub geometry: Geometry,
+}
+
+#[derive(Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct RawConfig {
+    #[serde(default)]
+    model: Option<String>,
+    #[serde(default)]
+    preset: Option<String>,
+    #[serde(default)]
+    description: Option<String>,
+    #[serde(default)]
+    effects: Option<Vec<String>>,
+    #[serde(default)]
+    params: Option<Map<String, Value>>,
+    #[serde(default)]
+    bound: Option<String>,
+    #[serde(default)]
+    grid: Option<Grid>,
+    #[serde(default)]
+    geometry: Option<Map<String, Value>>,
+}
+
+/// The presets shipped with the crate: (name, JSON text).
+pub const PRESETS: &[(&str, &str)] = &[
+    ("fastsim", include_str!("../presets/fastsim.json")),
+    ("polach", include_str!("../presets/polach.json")),
+    ("table4.1", include_str!("../presets/table4.1.json")),
+    ("dry", include_str!("../presets/dry.json")),
+    ("wet", include_str!("../presets/wet.json")),
+    ("dry_sanded", include_str!("../presets/dry_sanded.json")),
+    ("wet_sanded", include_str!("../presets/wet_sanded.json")),
+    ("twin_disc", include_str!("../presets/twin_disc.json")),
+];
+
+fn preset_text(name: &str) -> Result<&'static str> {
+    PRESETS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, t)| *t)
+        .ok_or_else(|| CreepError::Unknown {
+            kind: "preset".into(),
+            name: name.into(),
+            accepted: PRESETS
+                .iter()
+                .map(|(n, _)| *n)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+}
+
+fn cfg_err(src: &str, message: String) -> CreepError {
+    CreepError::Config {
+        source_name: src.into(),
+        message,
+    }
+}
+
+fn param_value(src: &str, name: &str, v: &Value) -> Result<f64> {
+    match v {
+        Value::Number(n) => n.as_f64().ok_or_else(|| cfg_err(src, format!("params.{name}: not a finite number"))),
+        Value::String(s) if s == "inf" || s == "Infinity" => Ok(f64::INFINITY),
+        _ => Err(cfg_err(src, format!("params.{name}: expected a number (in the unit the name carries) or \"inf\", got {v}"))),
+    }
+}
+
+fn geo_num(src: &str, m: &Map<String, Value>, key: &str) -> Result<Option<f64>> {
+    match m.get(key) {
+        None => Ok(None),
+        Some(Value::Number(n)) => {
+            let x = n.as_f64().unwrap_or(f64::NAN);
+            if x.is_finite() && x > 0.0 {
+                Ok(Some(x))
+            } else {
+                Err(cfg_err(src, format!("geometry.{key} = {x}: must be > 0")))
+            }
+        }
+        Some(v) => Err(cfg_err(
+            src,
+            format!("geometry.{key}: expected a number > 0, got {v}"),
+        )),
+    }
+}
+
+fn parse_geometry(src: &str, m: &Map<String, Value>) -> Result<Geometry> {
+    for k in m.keys() {
+        if ![
+            "a_mm",
+            "b_mm",
+            "fn_ref_kN",
+            "rx_mm",
+            "ry_mm",
+            "line_radius_mm",
+            "line_width_mm",
+        ]
+        .contains(&k.as_str())
+        {
+            return Err(cfg_err(src, format!("geometry.{k}: unknown key; accepted: a_mm, b_mm, fn_ref_kN | rx_mm, ry_mm | line_radius_mm, line_width_mm")));
+        }
+    }
+    if let (Some(r), Some(w)) = (
+        geo_num(src, m, "line_radius_mm")?,
+        geo_num(src, m, "line_width_mm")?,
+    ) {
+        return Ok(Geometry::Line {
+            r: r * 1e-3,
+            width: w * 1e-3,
+        });
+    }
+    if let (Some(rx), Some(ry)) = (geo_num(src, m, "rx_mm")?, geo_num(src, m, "ry_mm")?) {
+        return Ok(Geometry::Curvatures {
+            rx: rx * 1e-3,
+            ry: ry * 1e-3,
+        });
+    }
+    match (geo_num(src, m, "a_mm")?, geo_num(src, m, "b_mm")?, geo_num(src, m, "fn_ref_kN")?) {
+        (Some(a), Some(b), Some(f)) => Ok(Geometry::SemiAxes { a: a * 1e-3, b: b * 1e-3, fn_ref: f * 1e3 }),
+        _ => Err(cfg_err(src, "geometry: give a_mm, b_mm and fn_ref_kN, or rx_mm and ry_mm, or line_radius_mm and line_width_mm".into())),
+    }
+}
+
+impl Config {
+    /// The configuration of a preset by name.
+    pub fn preset(name: &str) -> Result<Self> {
+        let text = preset_text(name)?;
+        Self::from_json_str(text, &format!("preset '{name}'"))
+    }
+
+    /// Default configuration of a model family (`ecf` -> preset `table4.1`).
+    pub fn for_model(model: &str) -> Result<Self> {
+        match ModelKind::parse(model)? {
+            ModelKind::Ecf => Self::preset("table4.1"),
+            ModelKind::Fastsim => Self::preset("fastsim"),
+            ModelKind::Polach => Self::preset("polach"),
+        }
+    }
+
+    /// Reads a configuration file.
+    pub fn from_file(path: &std::path::Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| cfg_err(&path.display().to_string(), format!("cannot read: {e}")))?;
+        Self::from_json_str(&text, &path.display().to_string())
+    }
+
+    /// Parses a configuration document; `src` names it in error messages.
+    pub fn from_json_str(text: &str, src: &str) -> Result<Self> {
+        let raw: RawConfig = serde_json::from_str(text).map_err(|e| {
+            cfg_err(
+                src,
+                format!("line {}, column {}: {}", e.line(), e.column(), e),
+            )
+        })?;
+        let mut cfg = match &raw.preset {
+            Some(p) => {
+                let base = Self::preset(p)?;
+                Config {
+                    preset: p.clone(),
+                    ..base
+                }
+            }
+            None => {
+                let model = raw.model.as_deref().ok_or_else(|| {
+                    cfg_err(
+                        src,
+                        "missing \"model\" (ecf, fastsim or polach) or \"preset\"".into(),
+                    )
+                })?;
+                Config {
+                    model: ModelKind::parse(model)?,
+                    preset: "custom".into(),
+                    effects: EffectSet::empty(),
+                    params: Params::default(),
+                    bound: Bound::Elliptic,
+                    grid: DEFAULT_GRID,
+                    geometry: DEFAULT_GEOMETRY,
+                }
+            }
+        };
+        if let Some(m) = &raw.model {
+            let kind = ModelKind::parse(m)?;
+            if raw.preset.is_some() && kind != cfg.model {
+                return Err(cfg_err(
+                    src,
+                    format!(
+                        "model '{m}' does not match preset '{}' (model '{}')",
+                        cfg.preset,
+                        cfg.model.name()
+                    ),
+                ));
+            }
+            cfg.model = kind;
+        }
+        if let Some(list) = &raw.effects {
+            let relative = !list.is_empty()
+                && list
+                    .iter()
+                    .all(|e| e.starts_with('+') || e.starts_with('-'));
+            if !relative {
+                cfg.effects = EffectSet::empty();
+            }
+            for e in list {
+                if let Some(n) = e.strip_prefix('-') {
+                    if relative {
+                        cfg.effects.remove(effects::by_name(n)?);
+                        continue;
+                    }
+                }
+                let n = e.strip_prefix('+').unwrap_or(e);
+                cfg.effects.insert(effects::by_name(n)?);
+            }
+        }
+        if let Some(ps) = &raw.params {
+            for (name, v) in ps {
+                let x = param_value(src, name, v)?;
+                cfg.params
+                    .set_by_name(name, x)
+                    .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
+            }
+        }
+        if let Some(b) = &raw.bound {
+            cfg.bound = match b.as_str() {
+                "elliptic" => Bound::Elliptic,
+                "parabolic" => Bound::Parabolic,
+                _ => {
+                    return Err(cfg_err(
+                        src,
+                        format!("bound '{b}': expected \"elliptic\" or \"parabolic\""),
+                    ))
+                }
+            };
+        }
+        if let Some(g) = raw.grid {
+            g.validate().map_err(|e| cfg_err(src, e.to_string()))?;
+            cfg.grid = g;
+        }
+        if let Some(g) = &raw.geometry {
+            cfg.geometry = parse_geometry(src, g)?;
+        }
+        if cfg.model == ModelKind::Fastsim && !cfg.effects.has(Effect::Coulomb) {
+            return Err(cfg_err(
+                src,
+                "model fastsim needs the effect \"coulomb\"".into(),
+            ));
+        }
+        Ok(cfg)
+    }
+
+    /// The configuration as a JSON document that [`Config::from_json_str`] reads back.
+    pub fn to_json(&self) -> Value {
+        let mut ps = Map::new();
+        for (name, v) in self.params.iter() {
+            let val = if v.is_infinite() {
+                Value::String("inf".into())
+            } else {
+                serde_json::json!(v)
+            };
+            ps.insert(name.into(), val);
+        }
+        let geometry = match self.geometry {
+            Geometry::SemiAxes { a, b, fn_ref } => {
+                serde_json::json!({"a_mm": a * 1e3, "b_mm": b * 1e3, "fn_ref_kN": fn_ref * 1e-3})
+            }
+            Geometry::Curvatures { rx, ry } => {
+                serde_json::json!({"rx_mm": rx * 1e3, "ry_mm": ry * 1e3})
+            }
+            Geometry::Line { r, width } => {
+                serde_json::json!({"line_radius_mm": r * 1e3, "line_width_mm": width * 1e3})
+            }
+        };
+        serde_json::json!({
+            "model": self.model.name(),
+            "effects": self.effects.to_vec().iter().map(|e| effects::info(*e).name).collect::<Vec<_>>(),
+            "params": ps,
+            "bound": match self.bound { Bound::Elliptic => "elliptic", Bound::Parabolic => "parabolic" },
+            "grid": self.grid,
+            "geometry": geometry,
+        })
+    }
+
+    /// True if the effect is on.
+    pub fn has(&self, e: Effect) -> bool {
+        self.effects.has(e)
+    }
+
+    /// Names of all parameters (for help texts).
+    pub fn param_names() -> Vec<&'static str> {
+        params::SPECS.iter().map(|s| s.name).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_parses() {
+        for (name, _) in PRESETS {
+            let c = Config::preset(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let back = Config::from_json_str(&c.to_json().to_string(), "roundtrip").unwrap();
+            assert_eq!(back.params, c.params, "{name}");
+            assert_eq!(back.effects, c.effects, "{name}");
+        }
+    }
+
+    #[test]
+    fn errors_name_the_problem() {
+        let e = Config::from_json_str("{\"preset\": \"moist\"}", "x.json")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("moist") && e.contains("table4.1"), "{e}");
+        let e = Config::from_json_str("{\"model\": \"ecf\",\n \"params\": {\"mu\": }}", "x.json")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("line 2"), "{e}");
+        let e = Config::from_json_str("{\"model\": \"ecf\", \"params\": {\"nu\": 0.9}}", "x.json")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("nu") && e.contains("0.5"), "{e}");
+        let e = Config::from_json_str("{\"preset\": \"dry\", \"effects\": [\"-heat\"]}", "x.json")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("heat") && e.contains("temperature"), "{e}");
+    }
+
+    #[test]
+    fn relative_effects_modify_the_preset() {
+        let c = Config::from_json_str(
+            "{\"preset\": \"dry\", \"effects\": [\"-temperature\", \"+elastic_unloading\"]}",
+            "x",
+        )
+        .unwrap();
+        assert!(
+            !c.has(Effect::Temperature)
+                && c.has(Effect::ElasticUnloading)
+                && c.has(Effect::VocePlasticity)
+        );
+    }
+}

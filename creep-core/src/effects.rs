@@ -1,0 +1,156 @@
+//! The catalogue of switchable physical effects of the bristle engine, each with a name, a physical description and its parameters.
+
+use crate::error::{CreepError, Result};
+use crate::params::P;
+use serde::{Deserialize, Serialize};
+
+/// A switchable physical effect of the bristle (brush) engine.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, PartialOrd, Ord)]
+#[serde(rename_all = "snake_case")]
+pub enum Effect {
+    /// Coulomb bound |tau| <= mu p (FASTSIM).
+    Coulomb,
+    /// Elastic compliance L_e of the third body layer.
+    LayerElasticity,
+    /// Elasto-plastic 3BL with Voce hardening between tau_c1 and tau_c2.
+    VocePlasticity,
+    /// Normal-stress dependence of the 3BL material functions.
+    PressureDependence,
+    /// Flash temperature and thermal softening of the 3BL.
+    Temperature,
+    /// Time-dependent (transient) bristle grid.
+    Transient,
+    /// Elastic unloading with stored hardening (incremental plasticity).
+    ElasticUnloading,
+}
+
+/// Catalogue entry of an effect.
+#[derive(Clone, Copy, Debug)]
+pub struct EffectInfo {
+    /// The effect.
+    pub effect: Effect,
+    /// Name in configuration files.
+    pub name: &'static str,
+    /// One-paragraph physical description.
+    pub description: &'static str,
+    /// Parameters the effect uses.
+    pub params: &'static [P],
+}
+
+/// All effects with their descriptions.
+pub const CATALOGUE: &[EffectInfo] = &[
+    EffectInfo {
+        effect: Effect::Coulomb,
+        name: "coulomb",
+        description: "Dry Coulomb friction at the bristle tips: a bristle sticks while its stress is below mu times the local normal pressure and slides at that bound otherwise. With elastic wheel and rail (Kalker's simplified theory) this is FASTSIM. The bound follows the elliptic Hertz pressure by default (parabolic on request, as in Kalker's original). It replaces the layer strengths tau_c1, tau_c2 when switched on.",
+        params: &[P::Mu],
+    },
+    EffectInfo {
+        effect: Effect::LayerElasticity,
+        name: "layer_elasticity",
+        description: "The third body layer (oxides, wear particles, fluids, surface asperities, some micrometres thick) is an elastic spring in series with the elastic wheel and rail: the bristle flexibility becomes L_k + L_e (seed Eq. 4.1, 4.21). It lowers the initial slope of the creep curve (regime R1); the seed's L_e_0 is tiny, so the effect shows only when L_e_0 is raised by orders of magnitude.",
+        params: &[P::Le0],
+    },
+    EffectInfo {
+        effect: Effect::VocePlasticity,
+        name: "voce_plasticity",
+        description: "Above the first critical shear stress tau_c1 the layer deforms plastically and hardens after Voce's law towards the second critical shear stress tau_c2, which it never exceeds; the displacement scale of the hardening is L_p (seed Eq. 4.2, 4.19). When a change of pressure or temperature lowers tau_c2 below the bristle's stress, the layer breaks and slides inside itself at tau_c2 (Eq. 4.7). This gives the moderate rise of traction at medium creepage (regime R2).",
+        params: &[P::Lp0, P::Tc10, P::Tc20],
+    },
+    EffectInfo {
+        effect: Effect::PressureDependence,
+        name: "pressure_dependence",
+        description: "The layer behaves like a granular material: the more it is compressed, the more its particles and asperities interlock, so its strengths rise and its compliances fall with the local normal stress, saturating at high pressure: factor 1 - exp(-p X_p) (seed Eq. 4.3, 4.4; high-pressure-torsion tests, Sec. 3.3). It makes the traction coefficient depend on the normal load. Off: factor 1.",
+        params: &[P::LeP, P::LpP, P::Tc1P, P::Tc2P],
+    },
+    EffectInfo {
+        effect: Effect::Temperature,
+        name: "temperature",
+        description: "Plastic work in the layer turns into heat (fraction k_q), split between wheel and rail by the heat partition factor; each bristle's flash temperature follows from its own heat history by the 1/sqrt(t) conduction kernel (seed Eq. 4.22-4.35). Heat softens the layer: strengths fall and compliances rise as exp(-(T - T0) X_T) (Eq. 4.3, 4.4). It causes the maximum of the creep curve, the falling branch at high creepage (R3) and the lower traction at higher speed and load.",
+        params: &[P::LeT, P::LpT, P::Tc1T, P::Tc2T, P::T0, P::LambdaW, P::KappaW, P::LambdaR, P::KappaR, P::Kq],
+    },
+    EffectInfo {
+        effect: Effect::Transient,
+        name: "transient",
+        description: "Bristles are material points carried through the contact at the vehicle speed; their displacement, stress, hardening and heat history persist from one time step to the next, so the force responds to a change of creepage, speed or load within the time 2a/v a bristle needs to cross the contact (seed Sec. 4.5). Off: every step returns the quasi-steady state of the current inputs.",
+        params: &[],
+    },
+    EffectInfo {
+        effect: Effect::ElasticUnloading,
+        name: "elastic_unloading",
+        description: "Unloading rule variant: a plastically deformed bristle whose load decreases unloads elastically along the layer-plus-body stiffness and keeps its hardening (incremental plasticity with radial return and a stored Voce hardening variable), instead of retracing the loading characteristic (the seed-faithful default). It matters when the creepage oscillates or reverses.",
+        params: &[],
+    },
+];
+
+/// Catalogue entry of an effect.
+pub fn info(effect: Effect) -> &'static EffectInfo {
+    CATALOGUE
+        .iter()
+        .find(|e| e.effect == effect)
+        .unwrap_or(&CATALOGUE[0])
+}
+
+/// Looks an effect up by name.
+pub fn by_name(name: &str) -> Result<Effect> {
+    CATALOGUE
+        .iter()
+        .find(|e| e.name == name)
+        .map(|e| e.effect)
+        .ok_or_else(|| CreepError::Unknown {
+            kind: "effect".into(),
+            name: name.into(),
+            accepted: CATALOGUE
+                .iter()
+                .map(|e| e.name)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+}
+
+/// A set of effects.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EffectSet(u32);
+
+impl EffectSet {
+    /// Empty set.
+    pub fn empty() -> Self {
+        EffectSet(0)
+    }
+    /// Set from a list.
+    pub fn from_slice(effects: &[Effect]) -> Self {
+        let mut s = EffectSet(0);
+        for e in effects {
+            s.insert(*e);
+        }
+        s
+    }
+    /// Adds an effect.
+    pub fn insert(&mut self, e: Effect) {
+        self.0 |= 1 << (e as u32);
+    }
+    /// Removes an effect.
+    pub fn remove(&mut self, e: Effect) {
+        self.0 &= !(1 << (e as u32));
+    }
+    /// True if the effect is on.
+    pub fn has(&self, e: Effect) -> bool {
+        self.0 & (1 << (e as u32)) != 0
+    }
+    /// The effects in catalogue order.
+    pub fn to_vec(&self) -> Vec<Effect> {
+        CATALOGUE
+            .iter()
+            .map(|i| i.effect)
+            .filter(|e| self.has(*e))
+            .collect()
+    }
+    /// Raw bits (for serialization).
+    pub fn bits(&self) -> u32 {
+        self.0
+    }
+    /// From raw bits.
+    pub fn from_bits(bits: u32) -> Self {
+        EffectSet(bits)
+    }
+}

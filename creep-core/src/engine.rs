@@ -1,0 +1,989 @@
+//! The bristle engine: a persistent grid of bristles carried through the contact, one `step(dt, inputs)` for time.
+//!
+//! Each of `ny` strips across the contact holds `nx + 1` bristles (material points of the
+//! third body layer, seed Fig. 4.2) in normalized coordinates xi = x/a in [-l_j, l_j],
+//! l_j = sqrt(1 - eta_j^2), eta_j = y/b. Bristles move towards the trailing edge at the
+//! vehicle speed; a strip keeps a ring buffer and a phase in [0, 1) that says how far its
+//! bristles have moved since the last one entered at the leading edge with zero
+//! displacement (Eq. 4.17). A time step is cut into sub-steps at the instants a new bristle
+//! enters; in each sub-step every bristle gets the rigid slip increment of Eq. 4.16 and
+//! the bristle law (3BL or Coulomb, module [`crate::bristle`]) with the temperature of its
+//! own heat history (module [`crate::thermal`]), solved per bristle.
+//!
+//! Steady state is the same code: [`Contact::steady`] marches one bristle per strip from
+//! the leading to the trailing edge with the same sub-step `dx/v` and stores its state at
+//! every node, which is exactly the grid the transient step reaches after 2a/v with constant
+//! inputs (tested bit for bit).
+
+use crate::bristle::{self, BristleState, Material, Regime, Rule};
+use crate::config::{Bound, Config, Geometry, ModelKind};
+use crate::effects::Effect;
+use crate::error::{check_range, CreepError, Result};
+use crate::hertz::{self, Patch};
+use crate::kalker;
+use crate::params::P;
+use crate::thermal::{self, Kernel, N_KERNEL};
+
+/// Speeds below this (m/s) count as standstill: no advection and no frictional heat.
+pub const V_STANDSTILL: f64 = 1e-6;
+
+/// Operating point of one contact; may change every step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inputs {
+    /// Longitudinal creepage c_x, - (Eq. 4.12; positive: traction, force F_x > 0).
+    pub cx: f64,
+    /// Lateral creepage c_y, -.
+    pub cy: f64,
+    /// Spin creepage c_s, 1/m.
+    pub spin: f64,
+    /// Vehicle speed v, m/s (>= 0).
+    pub v: f64,
+    /// Normal force F_N, N.
+    pub fn_n: f64,
+    /// Bulk temperature T_B, degC.
+    pub t_bulk: f64,
+}
+
+impl Default for Inputs {
+    fn default() -> Self {
+        Inputs {
+            cx: 0.0,
+            cy: 0.0,
+            spin: 0.0,
+            v: 5.0,
+            fn_n: 110e3,
+            t_bulk: 20.0,
+        }
+    }
+}
+
+impl Inputs {
+    /// Checks every input; names the field and the accepted range on error.
+    pub fn validate(&self) -> Result<()> {
+        check_range("cx", self.cx, -10.0, 10.0, "(-)")?;
+        check_range("cy", self.cy, -10.0, 10.0, "(-)")?;
+        check_range("spin", self.spin, -1e4, 1e4, "1/m")?;
+        check_range("v", self.v, 0.0, 1000.0, "m/s")?;
+        check_range("F_N", self.fn_n, 0.0, 1e8, "N")?;
+        check_range("T_bulk", self.t_bulk, -273.15, 2000.0, "degC")?;
+        Ok(())
+    }
+}
+
+/// Integral results of a step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Outputs {
+    /// Longitudinal creep force F_x = int tau_x dA, N.
+    pub fx: f64,
+    /// Lateral creep force F_y, N.
+    pub fy: f64,
+    /// Spin moment M_z = int (x tau_y - y tau_x) dA, N m.
+    pub mz: f64,
+    /// Traction coefficient f = F_x / F_N, -.
+    pub f: f64,
+    /// Maximum bristle temperature, degC.
+    pub t_max: f64,
+    /// Area-weighted mean bristle temperature, degC.
+    pub t_mean: f64,
+    /// Frictional power int q dA (both bodies), W.
+    pub p_fric: f64,
+    /// Area fraction of elastic (adhering) bristles, -.
+    pub frac_elastic: f64,
+    /// Area fraction of plastically hardening bristles, -.
+    pub frac_plastic: f64,
+    /// Area fraction of sliding bristles (Coulomb bound or broken layer), -.
+    pub frac_sliding: f64,
+    /// Semi-axis in rolling direction, m.
+    pub a: f64,
+    /// Lateral semi-axis, m.
+    pub b: f64,
+    /// Maximum Hertz pressure, Pa.
+    pub p0: f64,
+}
+
+/// One point of the fields along the strip nearest y = 0 (seed Fig. 4.9, 4.10).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldPoint {
+    /// Position in rolling direction, m (leading edge at +a).
+    pub x: f64,
+    /// Shear stress |tau|, Pa.
+    pub tau: f64,
+    /// Longitudinal shear stress tau_x, Pa.
+    pub tau_x: f64,
+    /// First critical shear stress (or Coulomb bound), Pa.
+    pub tau_c1: f64,
+    /// Second critical shear stress (or Coulomb bound), Pa.
+    pub tau_c2: f64,
+    /// Normal pressure, Pa.
+    pub p: f64,
+    /// Temperature, degC.
+    pub t: f64,
+    /// Regime: 0 elastic, 1 plastic, 2 sliding.
+    pub regime: u8,
+}
+
+/// Resolved SI parameters used in the inner loop.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Resolved {
+    pub coulomb: bool,
+    pub plastic: bool,
+    pub layer_el: bool,
+    pub pressure: bool,
+    pub temperature: bool,
+    pub transient: bool,
+    pub rule: Rule,
+    pub parabolic: bool,
+    pub mu: f64,
+    pub g: f64,
+    pub nu: f64,
+    pub le0: f64,
+    pub le_p: f64,
+    pub le_t: f64,
+    pub lp0: f64,
+    pub lp_p: f64,
+    pub lp_t: f64,
+    pub tc10: f64,
+    pub tc1_p: f64,
+    pub tc1_t: f64,
+    pub tc20: f64,
+    pub tc2_p: f64,
+    pub tc2_t: f64,
+    pub t0: f64,
+    pub lambda_w: f64,
+    pub kappa_w: f64,
+    pub lambda_r: f64,
+    pub kappa_r: f64,
+    pub kq: f64,
+}
+
+impl Resolved {
+    fn from_config(c: &Config) -> Self {
+        let p = &c.params;
+        Resolved {
+            coulomb: c.has(Effect::Coulomb),
+            plastic: c.has(Effect::VocePlasticity),
+            layer_el: c.has(Effect::LayerElasticity),
+            pressure: c.has(Effect::PressureDependence),
+            temperature: c.has(Effect::Temperature),
+            transient: c.has(Effect::Transient),
+            rule: if c.has(Effect::ElasticUnloading) {
+                Rule::ElasticUnloading
+            } else {
+                Rule::SameCharacteristic
+            },
+            parabolic: c.bound == Bound::Parabolic,
+            mu: p.si(P::Mu),
+            g: p.si(P::G),
+            nu: p.si(P::Nu),
+            le0: p.si(P::Le0),
+            le_p: p.si(P::LeP),
+            le_t: p.si(P::LeT),
+            lp0: p.si(P::Lp0),
+            lp_p: p.si(P::LpP),
+            lp_t: p.si(P::LpT),
+            tc10: p.si(P::Tc10),
+            tc1_p: p.si(P::Tc1P),
+            tc1_t: p.si(P::Tc1T),
+            tc20: p.si(P::Tc20),
+            tc2_p: p.si(P::Tc2P),
+            tc2_t: p.si(P::Tc2T),
+            t0: p.si(P::T0),
+            lambda_w: p.si(P::LambdaW),
+            kappa_w: p.si(P::KappaW),
+            lambda_r: p.si(P::LambdaR),
+            kappa_r: p.si(P::KappaR),
+            kq: p.si(P::Kq),
+        }
+    }
+
+    /// Pressure factor 1 - exp(-p c) of Eq. 4.3/4.4 (1 when the effect is off or c = inf).
+    #[inline]
+    fn pf(&self, p: f64, c: f64) -> f64 {
+        if !self.pressure || c.is_infinite() {
+            1.0
+        } else {
+            -(-p * c).exp_m1()
+        }
+    }
+
+    /// Temperature factor exp(-(T - T0) c) of Eq. 4.3/4.4 (1 when the effect is off).
+    #[inline]
+    fn tf(&self, t: f64, c: f64) -> f64 {
+        if !self.temperature || c == 0.0 {
+            1.0
+        } else {
+            (-(t - self.t0) * c).exp()
+        }
+    }
+}
+
+/// Pressure-only parts of the material at one node (cached per node; Eq. 4.3/4.4).
+#[derive(Clone, Copy, Debug, Default)]
+struct NodeP {
+    p: f64,
+    bound: f64,
+    tc1: f64,
+    tc2: f64,
+    le: f64,
+    lp: f64,
+}
+
+/// Per-sub-step kinematic context of one strip.
+struct Kin {
+    v: f64,
+    h: f64,
+    dist: f64,
+    cx: f64,
+    cy: f64,
+    cs: f64,
+    lx: f64,
+    ly: f64,
+    ls: f64,
+    heat: bool,
+    alpha_c: f64,
+    t_bulk: f64,
+}
+
+/// The persistent contact: geometry, bristle grid and its state.
+#[derive(Clone, Debug)]
+pub struct Contact {
+    cfg: Config,
+    r: Resolved,
+    kernel: Kernel,
+    nx: usize,
+    ny: usize,
+    /// Normalized strip centres eta_j and half-lengths l_j, strip widths d eta_j.
+    eta: Vec<f64>,
+    ell: Vec<f64>,
+    deta: Vec<f64>,
+    /// Ring-buffer head and phase per strip.
+    head: Vec<usize>,
+    phase: Vec<f64>,
+    /// Bristle state (index j * (nx + 1) + slot).
+    st: Vec<BristleState>,
+    acc: Vec<[f64; N_KERNEL]>,
+    /// Time since start, s.
+    time: f64,
+    inputs: Inputs,
+    patch: Patch,
+    flex: (f64, f64, f64),
+    out: Outputs,
+    initialized: bool,
+    warnings: Vec<String>,
+}
+
+impl Contact {
+    /// A new contact for a bristle-model configuration (`ecf` or `fastsim`).
+    pub fn new(cfg: &Config) -> Result<Self> {
+        if cfg.model == ModelKind::Polach {
+            return Err(CreepError::Config {
+                source_name: "model".into(),
+                message: "polach is a closed-form model, not a bristle model".into(),
+            });
+        }
+        cfg.grid.validate()?;
+        let (nx, ny) = (cfg.grid.nx, cfg.grid.ny);
+        let line = matches!(cfg.geometry, Geometry::Line { .. });
+        let ny = if line { 1 } else { ny };
+        let mut eta = Vec::with_capacity(ny);
+        let mut ell = Vec::with_capacity(ny);
+        let mut deta = Vec::with_capacity(ny);
+        for j in 0..ny {
+            if line {
+                eta.push(0.0);
+                ell.push(1.0);
+                deta.push(2.0);
+            } else {
+                let e = -1.0 + (j as f64 + 0.5) * 2.0 / ny as f64;
+                eta.push(e);
+                ell.push((1.0 - e * e).sqrt());
+                deta.push(2.0 / ny as f64);
+            }
+        }
+        let n = ny * (nx + 1);
+        let patch = Patch {
+            a: 1.0,
+            b: 1.0,
+            p0: 0.0,
+            line,
+        };
+        Ok(Contact {
+            cfg: cfg.clone(),
+            r: Resolved::from_config(cfg),
+            kernel: Kernel::default(),
+            nx,
+            ny,
+            eta,
+            ell,
+            deta,
+            head: vec![0; ny],
+            phase: vec![0.0; ny],
+            st: vec![BristleState::default(); n],
+            acc: vec![[0.0; N_KERNEL]; n],
+            time: 0.0,
+            inputs: Inputs::default(),
+            patch,
+            flex: (0.0, 0.0, 0.0),
+            out: Outputs::default(),
+            initialized: false,
+            warnings: Vec::new(),
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &Config {
+        &self.cfg
+    }
+
+    /// Simulated time, s.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Last outputs.
+    pub fn outputs(&self) -> Outputs {
+        self.out
+    }
+
+    /// Last inputs.
+    pub fn inputs(&self) -> Inputs {
+        self.inputs
+    }
+
+    /// Warnings raised since the last call (e.g. Péclet condition not met), drained.
+    pub fn take_warnings(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.warnings)
+    }
+
+    /// Contact patch for a normal force (geometry of the configuration).
+    pub fn patch_for(&self, fn_n: f64) -> Result<Patch> {
+        patch_for(&self.cfg, fn_n)
+    }
+
+    fn set_inputs(&mut self, inputs: &Inputs) -> Result<()> {
+        inputs.validate()?;
+        if inputs.fn_n > 0.0 {
+            self.patch = self.patch_for(inputs.fn_n)?;
+            let (a, b) = (self.patch.a, self.patch.b);
+            let (ka, kb) = if self.patch.line {
+                (a, 1e6 * a)
+            } else {
+                (a, b)
+            };
+            let c = kalker::coefficients(ka, kb, self.r.nu)?;
+            self.flex = kalker::flexibilities(ka, kb, self.r.g, &c);
+        }
+        self.inputs = *inputs;
+        if self.r.temperature && inputs.v > V_STANDSTILL {
+            let vw = inputs.v * (1.0 + inputs.cx).abs();
+            if !thermal::peclet_ok(self.patch.a, inputs.v, vw, self.r.kappa_w, self.r.kappa_r) {
+                let msg = format!(
+                    "Péclet condition a (v + v_w) > 20 (kappa_r + kappa_w) (Eq. 4.33) not met at v = {} m/s, a = {} mm: the flash temperature model neglects lateral heat conduction that matters here",
+                    inputs.v,
+                    self.patch.a * 1e3
+                );
+                if !self.warnings.contains(&msg) {
+                    self.warnings.push(msg);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Kinematic/thermal context for a sub-step of duration `h` moving distance `dist`.
+    fn kin(&self, h: f64, dist: f64) -> Kin {
+        let i = &self.inputs;
+        let heat = i.v > V_STANDSTILL && h > 0.0;
+        let vw = i.v * (1.0 + i.cx).abs();
+        let alpha = thermal::heat_partition(
+            vw,
+            i.v,
+            self.r.lambda_w,
+            self.r.kappa_w,
+            self.r.lambda_r,
+            self.r.kappa_r,
+        );
+        Kin {
+            v: i.v,
+            h,
+            dist,
+            cx: i.cx,
+            cy: i.cy,
+            cs: i.spin,
+            lx: self.flex.0,
+            ly: self.flex.1,
+            ls: self.flex.2,
+            heat,
+            alpha_c: alpha * thermal::flash_factor(self.r.lambda_w, self.r.kappa_w),
+            t_bulk: i.t_bulk,
+        }
+    }
+
+    /// Pressure-dependent material parts at normalized position (xi, eta).
+    fn node_p(&self, xi: f64, eta: f64) -> NodeP {
+        let r = &self.r;
+        let pt = &self.patch;
+        let rr = if pt.line {
+            xi * xi
+        } else {
+            xi * xi + eta * eta
+        };
+        let p = if rr >= 1.0 {
+            0.0
+        } else {
+            pt.p0 * (1.0 - rr).sqrt()
+        };
+        let bound = if r.parabolic {
+            // Kalker's parabolic pressure with the same total force: 2 F_N/(pi a b) = 4/3 p0 for the
+            // ellipse; 3 pi/8 p0 for the line contact.
+            let k = if pt.line {
+                3.0 * std::f64::consts::PI / 8.0
+            } else {
+                4.0 / 3.0
+            };
+            r.mu * (k * pt.p0 * (1.0 - rr)).max(0.0)
+        } else {
+            r.mu * p
+        };
+        if p <= 0.0 {
+            return NodeP {
+                p,
+                bound,
+                tc1: 0.0,
+                tc2: 0.0,
+                le: 0.0,
+                lp: 1.0,
+            };
+        }
+        let le = if r.layer_el {
+            r.le0 / r.pf(p, r.le_p)
+        } else {
+            0.0
+        };
+        NodeP {
+            p,
+            bound,
+            tc1: r.tc10 * r.pf(p, r.tc1_p),
+            tc2: r.tc20 * r.pf(p, r.tc2_p),
+            le,
+            lp: r.lp0 / r.pf(p, r.lp_p),
+        }
+    }
+
+    /// Full material at temperature `t` (Eq. 4.3, 4.4).
+    #[inline]
+    fn material(&self, np: &NodeP, t: f64) -> Material {
+        let r = &self.r;
+        if r.coulomb {
+            let le = np.le / r.tf(t, r.le_t);
+            return Material {
+                tc1: np.bound,
+                tc2: np.bound,
+                lp: 1.0,
+                le,
+            };
+        }
+        if !r.plastic {
+            let le = np.le / r.tf(t, r.le_t);
+            return Material {
+                tc1: f64::INFINITY,
+                tc2: f64::INFINITY,
+                lp: 1.0,
+                le,
+            };
+        }
+        if np.p <= 0.0 {
+            return Material {
+                tc1: 0.0,
+                tc2: 0.0,
+                lp: 1.0,
+                le: 0.0,
+            };
+        }
+        let (tf1, tf2, tfp, tfe) = if r.temperature {
+            (
+                r.tf(t, r.tc1_t),
+                r.tf(t, r.tc2_t),
+                r.tf(t, r.lp_t),
+                r.tf(t, r.le_t),
+            )
+        } else {
+            (1.0, 1.0, 1.0, 1.0)
+        };
+        let tc2 = np.tc2 * tf2;
+        let tc1 = (np.tc1 * tf1).min(tc2);
+        Material {
+            tc1,
+            tc2,
+            lp: np.lp / tfp,
+            le: np.le / tfe,
+        }
+    }
+
+    /// Advances one bristle by one sub-step; returns its heat density q (W/m^2, both bodies).
+    #[inline]
+    fn update_bristle(
+        &self,
+        k: &Kin,
+        np: &NodeP,
+        x: f64,
+        y: f64,
+        s: &mut BristleState,
+        acc: &mut [f64; N_KERNEL],
+        fac: &([f64; N_KERNEL], [f64; N_KERNEL]),
+    ) -> f64 {
+        let d = k.dist;
+        let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
+        // Temperature from the heat history (all but the newest interval), Eq. 4.35.
+        let t_hist = if self.r.temperature && k.heat {
+            let mut sum = 0.0;
+            for i in 0..N_KERNEL {
+                sum += self.kernel.weights[i] * fac.0[i] * acc[i];
+            }
+            k.t_bulk + k.alpha_c * sum
+        } else {
+            k.t_bulk
+        };
+        let self_c = if k.heat {
+            k.alpha_c * 2.0 * k.h.sqrt()
+        } else {
+            0.0
+        };
+        let old = *s;
+        let eval = |t: f64| -> (BristleState, f64) {
+            let m = self.material(np, t);
+            let lxe = k.lx + m.le;
+            let lye = k.ly + m.le;
+            let lse = k.ls + m.le;
+            let dtau = [
+                d * (k.cx / lxe - k.cs * y / lse),
+                d * (k.cy / lye + k.cs * x / lse),
+            ];
+            let mut ns = old;
+            bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule);
+            let q = if k.heat {
+                let dux = du[0] - lxe * (ns.tau[0] - old.tau[0]);
+                let duy = du[1] - lye * (ns.tau[1] - old.tau[1]);
+                (self.r.kq * (ns.tau[0] * dux + ns.tau[1] * duy) / k.h).max(0.0)
+            } else {
+                0.0
+            };
+            (ns, q)
+        };
+        let (mut ns, mut q) = eval(t_hist);
+        let mut t = t_hist;
+        if self.r.temperature && q > 0.0 && self_c > 0.0 {
+            // Solve T = t_hist + self_c q(T): g(T) decreasing; bracket [t_hist, t_hist + self_c q(t_hist)],
+            // Illinois (regula falsi) iterations to 0.01 K.
+            let (mut ta, mut ga) = (t_hist, self_c * q);
+            let mut tb = t_hist + self_c * q;
+            let (sb, qb) = eval(tb);
+            let mut gb = t_hist + self_c * qb - tb;
+            ns = sb;
+            q = qb;
+            t = tb;
+            let mut side = 0;
+            for _ in 0..30 {
+                if gb.abs() < 0.01 || (tb - ta).abs() < 1e-3 {
+                    break;
+                }
+                let tc = tb - gb * (tb - ta) / (gb - ga);
+                let (sc, qc) = eval(tc);
+                let gc = t_hist + self_c * qc - tc;
+                ns = sc;
+                q = qc;
+                t = tc;
+                if gc * gb < 0.0 {
+                    ta = tb;
+                    ga = gb;
+                    side = 0;
+                } else if side == 1 {
+                    ga *= 0.5;
+                } else {
+                    side = 1;
+                }
+                tb = tc;
+                gb = gc;
+            }
+        }
+        ns.temp = if self.r.temperature {
+            t_hist + self_c * q
+        } else {
+            k.t_bulk
+        };
+        ns.q = q;
+        *s = ns;
+        if self.r.temperature && k.heat {
+            let qw = q; // alpha is folded into alpha_c
+            for i in 0..N_KERNEL {
+                acc[i] = fac.0[i] * acc[i] + qw * fac.1[i];
+            }
+        }
+        q
+    }
+
+    #[inline]
+    fn idx(&self, j: usize, slot: usize) -> usize {
+        j * (self.nx + 1) + (self.head[j] + slot) % (self.nx + 1)
+    }
+
+    /// One sub-step of strip `j`: bristles move by `dist` (m) in time `h` (s); the phase is
+    /// advanced by the caller. Nodes are evaluated at their end-of-sub-step positions.
+    fn substep_strip(&mut self, j: usize, h: f64, dist: f64, phase_end: f64) {
+        let nx = self.nx;
+        let a = self.patch.a;
+        let b = self.patch.b;
+        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let eta = self.eta[j];
+        let y = if self.patch.line { 0.0 } else { eta * b };
+        let kin = self.kin(h, dist);
+        let fac = if self.r.temperature && kin.heat {
+            self.kernel.step_factors(h)
+        } else {
+            ([1.0; N_KERNEL], [h; N_KERNEL])
+        };
+        let inside = if phase_end > 0.0 { nx } else { nx + 1 };
+        for slot in 0..inside {
+            let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
+            let np = self.node_p(xi, eta);
+            let x_mid = a * (xi + 0.5 * dist / a);
+            let id = self.idx(j, slot);
+            let mut s = self.st[id];
+            let mut acc = self.acc[id];
+            self.update_bristle(&kin, &np, x_mid, y, &mut s, &mut acc, &fac);
+            self.st[id] = s;
+            self.acc[id] = acc;
+        }
+    }
+
+    /// A new bristle enters strip `j`: the oldest slot is recycled at the leading edge.
+    fn enter_bristle(&mut self, j: usize) {
+        let nx1 = self.nx + 1;
+        self.head[j] = (self.head[j] + self.nx) % nx1;
+        let id = self.idx(j, 0);
+        self.st[id] = BristleState {
+            temp: self.inputs.t_bulk,
+            ..BristleState::default()
+        };
+        self.acc[id] = [0.0; N_KERNEL];
+        self.phase[j] = 0.0;
+    }
+
+    /// Advances the contact by `dt` seconds with `inputs` held constant over the step
+    /// (Eq. 4.15). With the effect `transient` off, returns the quasi-steady state instead.
+    pub fn step(&mut self, dt: f64, inputs: &Inputs) -> Result<Outputs> {
+        check_range("dt", dt, 0.0, 1e3, "s")?;
+        if !self.r.transient || !self.initialized {
+            let out = self.steady(inputs)?;
+            self.time += dt;
+            return Ok(out);
+        }
+        self.set_inputs(inputs)?;
+        if inputs.fn_n <= 0.0 {
+            return Ok(self.lift_off());
+        }
+        let v = inputs.v;
+        let a = self.patch.a;
+        for j in 0..self.ny {
+            let dx = 2.0 * self.ell[j] * a / self.nx as f64;
+            if v <= V_STANDSTILL || dt == 0.0 {
+                let ph = self.phase[j];
+                self.substep_strip(j, dt, 0.0, ph);
+                continue;
+            }
+            let mut remaining = v * dt;
+            let tol = 1e-9 * dx;
+            while remaining > tol {
+                let to_next = (1.0 - self.phase[j]) * dx;
+                if remaining >= to_next - tol {
+                    // end positions are one node further (phase 1), then the slots shift
+                    self.substep_strip(j, to_next / v, to_next, 1.0);
+                    // all bristles moved one node: the slot numbering shifts by recycling the oldest
+                    self.enter_bristle(j);
+                    remaining -= to_next;
+                } else {
+                    let ph = self.phase[j] + remaining / dx;
+                    self.substep_strip(j, remaining / v, remaining, ph);
+                    self.phase[j] = ph;
+                    remaining = 0.0;
+                }
+            }
+        }
+        self.time += dt;
+        self.out = self.integrate();
+        Ok(self.out)
+    }
+
+    fn lift_off(&mut self) -> Outputs {
+        for s in self.st.iter_mut() {
+            *s = BristleState {
+                temp: self.inputs.t_bulk,
+                ..BristleState::default()
+            };
+        }
+        for a in self.acc.iter_mut() {
+            *a = [0.0; N_KERNEL];
+        }
+        self.out = Outputs {
+            t_max: self.inputs.t_bulk,
+            t_mean: self.inputs.t_bulk,
+            frac_elastic: 1.0,
+            ..Outputs::default()
+        };
+        self.out
+    }
+
+    /// Sets the grid to the steady state of constant `inputs` and returns its outputs.
+    /// Does not advance time.
+    pub fn steady(&mut self, inputs: &Inputs) -> Result<Outputs> {
+        self.set_inputs(inputs)?;
+        self.initialized = true;
+        if inputs.fn_n <= 0.0 {
+            return Ok(self.lift_off());
+        }
+        let a = self.patch.a;
+        let v = inputs.v;
+        for j in 0..self.ny {
+            self.head[j] = 0;
+            self.phase[j] = 0.0;
+            let dx = 2.0 * self.ell[j] * a / self.nx as f64;
+            // With v = 0 the march is over distance only (no heat): the v -> 0 limit.
+            let h = if v > V_STANDSTILL { dx / v } else { 0.0 };
+            let kin = self.kin(h, dx);
+            let fac = if self.r.temperature && kin.heat {
+                self.kernel.step_factors(h)
+            } else {
+                ([1.0; N_KERNEL], [h; N_KERNEL])
+            };
+            let dxi = 2.0 * self.ell[j] / self.nx as f64;
+            let eta = self.eta[j];
+            let y = if self.patch.line {
+                0.0
+            } else {
+                eta * self.patch.b
+            };
+            let mut s = BristleState {
+                temp: inputs.t_bulk,
+                ..BristleState::default()
+            };
+            let mut acc = [0.0; N_KERNEL];
+            let base = j * (self.nx + 1);
+            self.st[base] = s;
+            self.acc[base] = acc;
+            for slot in 1..=self.nx {
+                let xi = self.ell[j] - slot as f64 * dxi;
+                let np = self.node_p(xi, eta);
+                let x_mid = a * (xi + 0.5 * dx / a);
+                self.update_bristle(&kin, &np, x_mid, y, &mut s, &mut acc, &fac);
+                self.st[base + slot] = s;
+                self.acc[base + slot] = acc;
+            }
+        }
+        self.out = self.integrate();
+        Ok(self.out)
+    }
+
+    /// Quadrature weights (normalized length) of the nodes of strip `j` for its phase.
+    fn weights(&self, j: usize, w: &mut [f64]) {
+        let nx = self.nx;
+        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let ph = self.phase[j];
+        for x in w.iter_mut() {
+            *x = 0.0;
+        }
+        w[0] += 0.5 * ph * dxi;
+        for k in 0..nx - 1 {
+            w[k] += 0.5 * dxi;
+            w[k + 1] += 0.5 * dxi;
+        }
+        let lt = (1.0 - ph) * dxi;
+        w[nx - 1] += 0.5 * lt * (1.0 + ph);
+        w[nx] += 0.5 * lt * (1.0 - ph);
+    }
+
+    fn integrate(&self) -> Outputs {
+        let (a, b) = (self.patch.a, self.patch.b);
+        let nx = self.nx;
+        let mut w = vec![0.0; nx + 1];
+        let (mut fx, mut fy, mut mz, mut pf, mut tsum, mut area) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        let mut fr = [0.0; 3];
+        let mut tmax = f64::NEG_INFINITY;
+        for j in 0..self.ny {
+            self.weights(j, &mut w);
+            let dy = if self.patch.line {
+                2.0 * b
+            } else {
+                self.deta[j] * b
+            };
+            let y = if self.patch.line {
+                0.0
+            } else {
+                self.eta[j] * b
+            };
+            let dxi = 2.0 * self.ell[j] / nx as f64;
+            for (slot, wk) in w.iter().enumerate() {
+                let s = &self.st[self.idx(j, slot)];
+                let da = wk * a * dy;
+                let x = a * (self.ell[j] - (slot as f64 + self.phase[j]) * dxi);
+                fx += s.tau[0] * da;
+                fy += s.tau[1] * da;
+                mz += (x * s.tau[1] - y * s.tau[0]) * da;
+                pf += s.q * da;
+                if *wk > 0.0 {
+                    tsum += s.temp * da;
+                    area += da;
+                    fr[s.regime as usize] += da;
+                    tmax = tmax.max(s.temp);
+                }
+            }
+        }
+        let fn_n = self.inputs.fn_n;
+        let area = area.max(f64::MIN_POSITIVE);
+        Outputs {
+            fx,
+            fy,
+            mz,
+            f: if fn_n > 0.0 { fx / fn_n } else { 0.0 },
+            t_max: if tmax.is_finite() {
+                tmax
+            } else {
+                self.inputs.t_bulk
+            },
+            t_mean: tsum / area,
+            p_fric: pf,
+            frac_elastic: fr[0] / area,
+            frac_plastic: fr[1] / area,
+            frac_sliding: fr[2] / area,
+            a,
+            b,
+            p0: self.patch.p0,
+        }
+    }
+
+    /// Fields along the strip nearest y = 0, from the leading to the trailing edge.
+    pub fn field_y0(&self) -> Vec<FieldPoint> {
+        let j = (0..self.ny)
+            .min_by(|&p, &q| self.eta[p].abs().total_cmp(&self.eta[q].abs()))
+            .unwrap_or(0);
+        let nx = self.nx;
+        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let inside = if self.phase[j] > 0.0 { nx } else { nx + 1 };
+        (0..inside)
+            .map(|slot| {
+                let xi = self.ell[j] - (slot as f64 + self.phase[j]) * dxi;
+                let s = &self.st[self.idx(j, slot)];
+                let np = self.node_p(xi, self.eta[j]);
+                let m = self.material(&np, s.temp);
+                FieldPoint {
+                    x: xi * self.patch.a,
+                    tau: (s.tau[0] * s.tau[0] + s.tau[1] * s.tau[1]).sqrt(),
+                    tau_x: s.tau[0],
+                    tau_c1: m.tc1,
+                    tau_c2: m.tc2,
+                    p: np.p,
+                    t: s.temp,
+                    regime: s.regime as u8,
+                }
+            })
+            .collect()
+    }
+
+    /// Raw state for serialization: (time, inputs, heads, phases, bristles, accumulators, initialized).
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn raw_state(
+        &self,
+    ) -> (
+        f64,
+        Inputs,
+        &[usize],
+        &[f64],
+        &[BristleState],
+        &[[f64; N_KERNEL]],
+        bool,
+        Outputs,
+    ) {
+        (
+            self.time,
+            self.inputs,
+            &self.head,
+            &self.phase,
+            &self.st,
+            &self.acc,
+            self.initialized,
+            self.out,
+        )
+    }
+
+    /// Restores a raw state; checks the sizes.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn set_raw_state(
+        &mut self,
+        time: f64,
+        inputs: Inputs,
+        head: Vec<usize>,
+        phase: Vec<f64>,
+        st: Vec<BristleState>,
+        acc: Vec<[f64; N_KERNEL]>,
+        initialized: bool,
+        out: Outputs,
+    ) -> Result<()> {
+        if head.len() != self.ny
+            || phase.len() != self.ny
+            || st.len() != self.st.len()
+            || acc.len() != self.acc.len()
+        {
+            return Err(CreepError::State(format!(
+                "grid mismatch: state has {} strips / {} bristles, contact has {} / {}",
+                head.len(),
+                st.len(),
+                self.ny,
+                self.st.len()
+            )));
+        }
+        if head.iter().any(|&h| h > self.nx) || phase.iter().any(|p| !(0.0..1.0).contains(p)) {
+            return Err(CreepError::State(
+                "corrupt ring-buffer head or phase".into(),
+            ));
+        }
+        self.time = time;
+        self.set_inputs(&inputs)?;
+        self.head = head;
+        self.phase = phase;
+        self.st = st;
+        self.acc = acc;
+        self.initialized = initialized;
+        self.out = out;
+        Ok(())
+    }
+
+    /// Grid size (nx, ny actually used; a line contact has one strip).
+    pub fn grid_size(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+}
+
+/// Regime counter helper for tests and callers.
+pub fn regime_name(r: Regime) -> &'static str {
+    match r {
+        Regime::Elastic => "elastic",
+        Regime::Plastic => "plastic",
+        Regime::Sliding => "sliding",
+    }
+}
+
+/// Contact patch of a configuration at a normal force.
+pub fn patch_for(cfg: &Config, fn_n: f64) -> Result<Patch> {
+    let p = &cfg.params;
+    match cfg.geometry {
+        Geometry::SemiAxes { a, b, fn_ref } => {
+            let s = (fn_n / fn_ref).cbrt();
+            Patch::from_semi_axes(a * s, b * s, fn_n)
+        }
+        Geometry::Curvatures { rx, ry } => {
+            hertz::hertz_from_curvatures(rx, ry, fn_n, p.si(P::G), p.si(P::Nu))
+        }
+        Geometry::Line { r, width } => {
+            hertz::line_contact(r, fn_n / width, width, p.si(P::G), p.si(P::Nu))
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! Error type of the physics crate: every message names the field and the accepted range.
+
+use thiserror::Error;
+
+/// Errors raised by the creep force models and their configuration.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum CreepError {
+    /// An input or parameter is outside its accepted range.
+    #[error("{field} = {value}: {expected}")]
+    OutOfRange {
+        /// Name of the input, flag or parameter (as the user wrote it).
+        field: String,
+        /// Offending value.
+        value: f64,
+        /// What was expected, e.g. "must be finite and > 0 N".
+        expected: String,
+    },
+    /// A name (preset, model, effect, parameter) is not known.
+    #[error("unknown {kind} '{name}'; accepted: {accepted}")]
+    Unknown {
+        /// What kind of name ("preset", "model", "effect", "parameter").
+        kind: String,
+        /// The name given.
+        name: String,
+        /// The accepted names.
+        accepted: String,
+    },
+    /// A configuration file or document is malformed.
+    #[error("configuration {source_name}: {message}")]
+    Config {
+        /// File or document name.
+        source_name: String,
+        /// What is wrong, with line and column where known.
+        message: String,
+    },
+    /// A saved state could not be restored.
+    #[error("state: {0}")]
+    State(String),
+}
+
+/// Result alias of the physics crate.
+pub type Result<T> = std::result::Result<T, CreepError>;
+
+/// Checks that `value` is finite and inside `[lo, hi]`.
+pub fn check_range(field: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<f64> {
+    if value.is_finite() && value >= lo && value <= hi {
+        Ok(value)
+    } else {
+        Err(CreepError::OutOfRange {
+            field: field.to_string(),
+            value,
+            expected: format!("must be finite and within [{lo}, {hi}] {unit}"),
+        })
+    }
+}
+
+/// Checks that `value` is finite and strictly positive.
+pub fn check_positive(field: &str, value: f64, unit: &str) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(CreepError::OutOfRange {
+            field: field.to_string(),
+            value,
+            expected: format!("must be finite and > 0 {unit}"),
+        })
+    }
+}

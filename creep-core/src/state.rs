@@ -1,0 +1,260 @@
+//! Versioned, explicit byte format of a model's complete hidden state (bristle grid, heat histories) for save/restore.
+//!
+//! Layout (little endian): magic `ECFSTATE`, format version u32, config JSON (u32 length +
+//! UTF-8), time f64, inputs 6 x f64, outputs 13 x f64, initialized u8, then for bristle
+//! models: nx u32, ny u32, kernel size u32, heads ny x u32, phases ny x f64, per bristle
+//! u(2) tau(2) sh temp q as 7 x f64 and regime u8, then the heat accumulators n x K x f64.
+//! Restoring checks the magic, the version, the configuration and every size, so a state
+//! from another configuration or a corrupt buffer is refused with a message, never misread.
+
+use crate::bristle::{BristleState, Regime};
+use crate::engine::{Inputs, Outputs};
+use crate::error::{CreepError, Result};
+use crate::model::Model;
+use crate::thermal::N_KERNEL;
+
+const MAGIC: &[u8; 8] = b"ECFSTATE";
+/// Current version of the byte format.
+pub const VERSION: u32 = 1;
+
+struct W(Vec<u8>);
+impl W {
+    fn f(&mut self, x: f64) {
+        self.0.extend_from_slice(&x.to_le_bytes());
+    }
+    fn u(&mut self, x: u32) {
+        self.0.extend_from_slice(&x.to_le_bytes());
+    }
+    fn b(&mut self, x: u8) {
+        self.0.push(x);
+    }
+}
+
+struct R<'a> {
+    d: &'a [u8],
+    p: usize,
+}
+impl R<'_> {
+    fn take(&mut self, n: usize) -> Result<&[u8]> {
+        if self.p + n > self.d.len() {
+            return Err(CreepError::State(format!(
+                "truncated buffer: need {} bytes at offset {}, have {}",
+                n,
+                self.p,
+                self.d.len()
+            )));
+        }
+        let s = &self.d[self.p..self.p + n];
+        self.p += n;
+        Ok(s)
+    }
+    fn f(&mut self) -> Result<f64> {
+        let mut a = [0u8; 8];
+        a.copy_from_slice(self.take(8)?);
+        Ok(f64::from_le_bytes(a))
+    }
+    fn u(&mut self) -> Result<u32> {
+        let mut a = [0u8; 4];
+        a.copy_from_slice(self.take(4)?);
+        Ok(u32::from_le_bytes(a))
+    }
+    fn b(&mut self) -> Result<u8> {
+        Ok(self.take(1)?[0])
+    }
+}
+
+fn put_inputs(w: &mut W, i: &Inputs) {
+    for x in [i.cx, i.cy, i.spin, i.v, i.fn_n, i.t_bulk] {
+        w.f(x);
+    }
+}
+fn get_inputs(r: &mut R) -> Result<Inputs> {
+    Ok(Inputs {
+        cx: r.f()?,
+        cy: r.f()?,
+        spin: r.f()?,
+        v: r.f()?,
+        fn_n: r.f()?,
+        t_bulk: r.f()?,
+    })
+}
+fn put_outputs(w: &mut W, o: &Outputs) {
+    for x in [
+        o.fx,
+        o.fy,
+        o.mz,
+        o.f,
+        o.t_max,
+        o.t_mean,
+        o.p_fric,
+        o.frac_elastic,
+        o.frac_plastic,
+        o.frac_sliding,
+        o.a,
+        o.b,
+        o.p0,
+    ] {
+        w.f(x);
+    }
+}
+fn get_outputs(r: &mut R) -> Result<Outputs> {
+    Ok(Outputs {
+        fx: r.f()?,
+        fy: r.f()?,
+        mz: r.f()?,
+        f: r.f()?,
+        t_max: r.f()?,
+        t_mean: r.f()?,
+        p_fric: r.f()?,
+        frac_elastic: r.f()?,
+        frac_plastic: r.f()?,
+        frac_sliding: r.f()?,
+        a: r.f()?,
+        b: r.f()?,
+        p0: r.f()?,
+    })
+}
+
+impl Model {
+    /// Serializes the complete state.
+    pub fn save_state(&self) -> Vec<u8> {
+        let mut w = W(Vec::new());
+        w.0.extend_from_slice(MAGIC);
+        w.u(VERSION);
+        let cfg = self.config().to_json().to_string();
+        w.u(cfg.len() as u32);
+        w.0.extend_from_slice(cfg.as_bytes());
+        match self {
+            Model::Polach {
+                inputs, out, time, ..
+            } => {
+                w.f(*time);
+                put_inputs(&mut w, inputs);
+                put_outputs(&mut w, out);
+                w.b(1);
+            }
+            Model::Bristle(c) => {
+                let (time, inputs, head, phase, st, acc, init, out) = c.raw_state();
+                w.f(time);
+                put_inputs(&mut w, &inputs);
+                put_outputs(&mut w, &out);
+                w.b(init as u8);
+                let (nx, ny) = c.grid_size();
+                w.u(nx as u32);
+                w.u(ny as u32);
+                w.u(N_KERNEL as u32);
+                for h in head {
+                    w.u(*h as u32);
+                }
+                for p in phase {
+                    w.f(*p);
+                }
+                for s in st {
+                    for x in [s.u[0], s.u[1], s.tau[0], s.tau[1], s.sh, s.temp, s.q] {
+                        w.f(x);
+                    }
+                    w.b(s.regime as u8);
+                }
+                for a in acc {
+                    for x in a {
+                        w.f(*x);
+                    }
+                }
+            }
+        }
+        w.0
+    }
+
+    /// Restores a state saved by [`Model::save_state`] of a model with the same configuration.
+    pub fn load_state(&mut self, data: &[u8]) -> Result<()> {
+        let mut r = R { d: data, p: 0 };
+        if r.take(8)? != MAGIC {
+            return Err(CreepError::State("not an ECF state (bad magic)".into()));
+        }
+        let v = r.u()?;
+        if v != VERSION {
+            return Err(CreepError::State(format!(
+                "state format version {v}, this build reads version {VERSION}"
+            )));
+        }
+        let n = r.u()? as usize;
+        let cfg = std::str::from_utf8(r.take(n)?)
+            .map_err(|_| CreepError::State("configuration is not UTF-8".into()))?
+            .to_string();
+        if cfg != self.config().to_json().to_string() {
+            return Err(CreepError::State(
+                "the state was saved with a different configuration".into(),
+            ));
+        }
+        let time = r.f()?;
+        let inputs = get_inputs(&mut r)?;
+        let out = get_outputs(&mut r)?;
+        let init = r.b()? != 0;
+        match self {
+            Model::Polach {
+                inputs: i,
+                out: o,
+                time: t,
+                ..
+            } => {
+                *i = inputs;
+                *o = out;
+                *t = time;
+            }
+            Model::Bristle(c) => {
+                let nx = r.u()? as usize;
+                let ny = r.u()? as usize;
+                let k = r.u()? as usize;
+                if (nx, ny) != c.grid_size() || k != N_KERNEL {
+                    return Err(CreepError::State(format!(
+                        "grid {nx}x{ny} (kernel {k}) does not match {:?} (kernel {N_KERNEL})",
+                        c.grid_size()
+                    )));
+                }
+                let nb = ny * (nx + 1);
+                let mut head = Vec::with_capacity(ny);
+                for _ in 0..ny {
+                    head.push(r.u()? as usize);
+                }
+                let mut phase = Vec::with_capacity(ny);
+                for _ in 0..ny {
+                    phase.push(r.f()?);
+                }
+                let mut st = Vec::with_capacity(nb);
+                for _ in 0..nb {
+                    let x: [f64; 7] = [r.f()?, r.f()?, r.f()?, r.f()?, r.f()?, r.f()?, r.f()?];
+                    let regime = match r.b()? {
+                        0 => Regime::Elastic,
+                        1 => Regime::Plastic,
+                        2 => Regime::Sliding,
+                        b => return Err(CreepError::State(format!("bad regime byte {b}"))),
+                    };
+                    st.push(BristleState {
+                        u: [x[0], x[1]],
+                        tau: [x[2], x[3]],
+                        sh: x[4],
+                        temp: x[5],
+                        q: x[6],
+                        regime,
+                    });
+                }
+                let mut acc = Vec::with_capacity(nb);
+                for _ in 0..nb {
+                    let mut a = [0.0; N_KERNEL];
+                    for v in a.iter_mut() {
+                        *v = r.f()?;
+                    }
+                    acc.push(a);
+                }
+                if r.p != data.len() {
+                    return Err(CreepError::State(format!(
+                        "{} trailing bytes",
+                        data.len() - r.p
+                    )));
+                }
+                c.set_raw_state(time, inputs, head, phase, st, acc, init, out)?;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,175 @@
+//! Flash temperature of a bristle from its own heat history (seed Eq. 4.30-4.35), with a sum-of-exponentials kernel.
+//!
+//! Eq. 4.34: T(t) = T_B + sqrt(kappa_w)/(lambda_w sqrt(pi)) * int q_w(t') / sqrt(t - t') dt'.
+//! With q piecewise constant over sub-steps, the newest interval [t_{n-1}, t_n] of length h
+//! contributes exactly 2 q_n sqrt(h) (Eq. 4.35's first term). The older history is a
+//! convolution with the kernel 1/sqrt(s); it is evaluated with
+//! 1/sqrt(s) = (1/sqrt(pi)) int exp(sigma/2) exp(-e^sigma s) d sigma, discretised by the
+//! trapezoidal rule in sigma (exponentially convergent) between rates `S_MIN` and `S_MAX`,
+//! plus a constant tail term for rates below `S_MIN`. Each bristle then carries one
+//! accumulator per rate, updated exactly for piecewise-constant heat:
+//! A_k(t_n) = exp(-s_k h) A_k(t_{n-1}) + q_n (1 - exp(-s_k h)) / s_k.
+//! The relative error of the kernel is below 0.2 % for 1e-8 s <= s <= 10 s (unit test), so
+//! any sub-step size and any history length cost the same: O(N_KERNEL) per bristle and step.
+
+use std::f64::consts::PI;
+
+/// Smallest decay rate of the kernel, 1/s.
+pub const S_MIN: f64 = 1e-2;
+/// Largest decay rate of the kernel, 1/s.
+pub const S_MAX: f64 = 1e10;
+/// Spacing of the rates in ln(s).
+pub const H_SIGMA: f64 = 1.25;
+/// Number of exponential terms (plus one constant tail term, index 0).
+pub const N_KERNEL: usize = 24;
+
+/// The sum-of-exponentials approximation of 1/sqrt(s).
+#[derive(Clone, Debug)]
+pub struct Kernel {
+    /// Rates s_k (1/s); `rates[0] = 0` is the constant tail term.
+    pub rates: [f64; N_KERNEL],
+    /// Weights w_k (1/sqrt(s) units).
+    pub weights: [f64; N_KERNEL],
+}
+
+impl Default for Kernel {
+    fn default() -> Self {
+        let mut rates = [0.0; N_KERNEL];
+        let mut weights = [0.0; N_KERNEL];
+        let s0 = S_MIN.ln();
+        for k in 1..N_KERNEL {
+            let sigma = s0 + (k - 1) as f64 * H_SIGMA;
+            rates[k] = sigma.exp();
+            weights[k] = H_SIGMA * (0.5 * sigma).exp() / PI.sqrt();
+        }
+        // The trapezoid's first node carries half weight; the rest of the integral below
+        // S_MIN (where exp(-s t) ~ 1) is int_{-inf}^{sigma0} e^{sigma/2} = 2 e^{sigma0/2}.
+        weights[1] *= 0.5;
+        weights[0] = 2.0 * (0.5 * s0).exp() / PI.sqrt();
+        Kernel { rates, weights }
+    }
+}
+
+impl Kernel {
+    /// Approximation of 1/sqrt(s).
+    pub fn eval(&self, s: f64) -> f64 {
+        self.rates
+            .iter()
+            .zip(self.weights.iter())
+            .map(|(r, w)| w * (-r * s).exp())
+            .sum()
+    }
+
+    /// Decay factors exp(-s_k h) and increments (1 - exp(-s_k h))/s_k for a sub-step `h`.
+    pub fn step_factors(&self, h: f64) -> ([f64; N_KERNEL], [f64; N_KERNEL]) {
+        let mut decay = [1.0; N_KERNEL];
+        let mut gain = [h; N_KERNEL];
+        for k in 1..N_KERNEL {
+            let x = self.rates[k] * h;
+            decay[k] = (-x).exp();
+            gain[k] = if x < 1e-8 {
+                h * (1.0 - 0.5 * x)
+            } else {
+                -(-x).exp_m1() / self.rates[k]
+            };
+        }
+        (decay, gain)
+    }
+}
+
+/// Heat partition factor alpha into the wheel (Eq. 4.30, 4.31): alpha = sqrt(v_w)/(sqrt(v_w)
+/// + beta sqrt(v)), beta = lambda_r sqrt(kappa_w)/(lambda_w sqrt(kappa_r)). `v_w` is the
+/// circumferential wheel speed, `v` the vehicle speed (m/s). Returns 0.5 when both are 0.
+pub fn heat_partition(
+    v_w: f64,
+    v: f64,
+    lambda_w: f64,
+    kappa_w: f64,
+    lambda_r: f64,
+    kappa_r: f64,
+) -> f64 {
+    let beta = lambda_r * kappa_w.sqrt() / (lambda_w * kappa_r.sqrt());
+    let num = v_w.max(0.0).sqrt();
+    let den = num + beta * v.max(0.0).sqrt();
+    if den <= 0.0 {
+        1.0 / (1.0 + beta)
+    } else {
+        num / den
+    }
+}
+
+/// Factor sqrt(kappa_w)/(lambda_w sqrt(pi)) of Eq. 4.34, K m^2 s^-1/2 / W.
+pub fn flash_factor(lambda_w: f64, kappa_w: f64) -> f64 {
+    kappa_w.sqrt() / (lambda_w * PI.sqrt())
+}
+
+/// Péclet condition of Eq. 4.33: a (v + v_w) > 20 (kappa_r + kappa_w).
+pub fn peclet_ok(a: f64, v: f64, v_w: f64, kappa_w: f64, kappa_r: f64) -> bool {
+    a * (v + v_w) > 20.0 * (kappa_r + kappa_w)
+}
+
+/// Exact Eq. 4.35 for a heat history `q[i]` on intervals ending at `t[i]` (t_0 = 0 implied):
+/// the temperature rise at t_n divided by the flash factor. Reference for tests.
+pub fn exact_history_sum(t: &[f64], q: &[f64]) -> f64 {
+    let n = t.len();
+    let tn = t[n - 1];
+    let mut s = 0.0;
+    for i in 0..n {
+        let t_prev = if i == 0 { 0.0 } else { t[i - 1] };
+        s += 2.0 * q[i] * ((tn - t_prev).sqrt() - (tn - t[i]).sqrt());
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kernel_approximates_inverse_sqrt() {
+        let k = Kernel::default();
+        let mut worst: f64 = 0.0;
+        let mut s = 1e-8;
+        while s <= 10.0 {
+            let rel = (k.eval(s) * s.sqrt() - 1.0).abs();
+            worst = worst.max(rel);
+            s *= 1.07;
+        }
+        assert!(worst < 2e-3, "worst relative kernel error {worst}");
+    }
+
+    #[test]
+    fn accumulators_reproduce_eq_4_35() {
+        // Irregular sub-steps and a varying heat history.
+        let k = Kernel::default();
+        let mut acc = [0.0; N_KERNEL];
+        let (mut t, mut ts, mut qs) = (0.0, vec![], vec![]);
+        for i in 0..300 {
+            let h = 1e-6 * (1.0 + (i % 7) as f64 * 3.0);
+            let q = 1e8 * (1.0 + (i as f64 * 0.1).sin());
+            t += h;
+            ts.push(t);
+            qs.push(q);
+            let (decay, gain) = k.step_factors(h);
+            // history part before this step's own contribution
+            let hist: f64 = (0..N_KERNEL)
+                .map(|j| k.weights[j] * decay[j] * acc[j])
+                .sum();
+            let approx = hist + 2.0 * q * h.sqrt();
+            let exact = exact_history_sum(&ts, &qs);
+            assert!(
+                (approx - exact).abs() / exact < 2e-3,
+                "step {i}: {approx} vs {exact}"
+            );
+            for j in 0..N_KERNEL {
+                acc[j] = decay[j] * acc[j] + q * gain[j];
+            }
+        }
+    }
+
+    #[test]
+    fn partition_is_half_for_equal_bodies_and_speeds() {
+        assert!((heat_partition(5.0, 5.0, 50.0, 1.4e-5, 50.0, 1.4e-5) - 0.5).abs() < 1e-12);
+        assert!(heat_partition(6.0, 5.0, 50.0, 1.4e-5, 50.0, 1.4e-5) > 0.5);
+    }
+}
