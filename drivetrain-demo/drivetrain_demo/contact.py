@@ -1,0 +1,213 @@
+"""Contact of one wheel: the ECF contact FMU through fmpy's FMU2Slave, or a steady-curve stand-in.
+
+Both offer the same small interface used by the co-simulation:
+    c = make_contact(kind, model=..., v=..., F_N=..., ...)
+    out = c.step(t, h, cx)   # inputs held over [t, t+h], returns (Fx [N], f [-]) at t+h
+    c.extra()                # dict of the other outputs (T_max, P_fric, fractions)
+    c.steady_f(cx_array)     # steady characteristic f(cx) at the same operating point
+    c.close()
+FMU variables used (names as in the FMU's modelDescription): inputs cx, cy, spin, v, FN,
+T_bulk; outputs Fx, f, T_max, P_fric, frac_*; parameters model, preset, transient, grid.
+The hot path calls fmi2SetReal/fmi2DoStep/fmi2GetReal through the FMU's ctypes functions
+with pre-built arrays (fmpy's wrappers allocate arrays on every call).
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[2]
+FMU_DEFAULT = REPO / "dist" / "ecf_contact.fmu"
+ECF_CLI = REPO / "target" / "release" / "ecf"
+EXTRA_OUTPUTS = ("T_max", "T_mean", "P_fric", "frac_elastic", "frac_plastic", "frac_sliding")
+
+
+def find_fmu(path: str | None = None) -> Path | None:
+    """The contact FMU: explicit path, $ECF_CONTACT_FMU, or dist/ecf_contact.fmu."""
+    for cand in (path, os.environ.get("ECF_CONTACT_FMU"), FMU_DEFAULT):
+        if cand and Path(cand).is_file():
+            return Path(cand)
+    if path:
+        raise SystemExit(f"error: FMU {path} not found")
+    return None
+
+
+class CurveContact:
+    """Stand-in: quasi-steady force f(cx) from the `ecf curve` CLI (no contact dynamics)."""
+
+    kind = "curve"
+
+    def __init__(self, model="ecf", v=5.0, F_N=110e3, T_bulk=20.0, preset=None, grid=None, **_):
+        self.model, self.v, self.F_N = model, v, F_N
+        cx = np.concatenate([np.linspace(0, 0.02, 41), np.linspace(0.0205, 0.8, 400)])
+        self._cx = cx
+        self._f = self._curve(cx, model, v, F_N, T_bulk, preset, grid)
+        self.f = 0.0
+
+    @staticmethod
+    def _curve(cx, model, v, F_N, T_bulk, preset, grid):
+        if not ECF_CLI.is_file():
+            raise SystemExit(f"error: {ECF_CLI} missing: run `cargo build --release -p ecf-cli`")
+        args = [str(ECF_CLI), "curve", "--model", model, "--v-mps", str(v), "--fn-kn", str(F_N / 1e3),
+                "--t-bulk-c", str(T_bulk), "--cx", ",".join(f"{c:.6g}" for c in cx)]
+        if preset:
+            args += ["--preset", preset]
+        if grid:
+            args += ["--grid", f"{grid[0]}x{grid[1]}"]
+        out = subprocess.run(args, check=True, capture_output=True, text=True).stdout.splitlines()
+        return np.array([float(l.split(",")[1]) for l in out[1:]])
+
+    def _interp(self, c):
+        c = np.asarray(c, float)
+        return np.sign(c) * np.interp(np.abs(c), self._cx, self._f)
+
+    def step(self, t, h, cx):
+        self.f = float(self._interp(cx))
+        return self.f * self.F_N, self.f
+
+    def extra(self):
+        return {}
+
+    def steady_f(self, cx):
+        return self._interp(cx)
+
+    def close(self):
+        pass
+
+
+class FMUContact:
+    """One instance of the contact FMU (FMI 2.0 co-simulation) for one wheel."""
+
+    kind = "fmu"
+    _unzipped: dict = {}
+
+    def __init__(self, fmu_path, model="ecf", v=5.0, F_N=110e3, T_bulk=20.0, preset=None, grid=None,
+                 transient=True, params=None, name="contact", start_time=0.0):
+        from fmpy import extract, read_model_description
+        from fmpy.fmi2 import FMU2Slave
+
+        fmu_path = str(fmu_path)
+        key = (fmu_path, os.path.getmtime(fmu_path))
+        if key not in FMUContact._unzipped:
+            md = read_model_description(fmu_path)
+            FMUContact._unzipped[key] = (extract(fmu_path), md)
+        unzipdir, md = FMUContact._unzipped[key]
+        self.md = md
+        self.vars = {sv.name: sv for sv in md.modelVariables}
+        self.F_N, self.v = F_N, v
+        self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=unzipdir,
+                             modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
+        self.fmu.instantiate()
+        self.fmu.setupExperiment(startTime=start_time)
+        self._set_parameters(model, preset, grid, transient, params or {})
+        self.fmu.enterInitializationMode()
+        self._set_real({"cx": 0.0, "cy": 0.0, "spin": 0.0, "v": v, "FN": F_N, "T_bulk": T_bulk})
+        self.fmu.exitInitializationMode()
+        # hot path: raw ctypes calls with fixed arrays
+        f = self.fmu._functions
+        self._c = self.fmu.component
+        self._setReal, self._getReal, self._doStep = f["fmi2SetReal"], f["fmi2GetReal"], f["fmi2DoStep"]
+        self._vr_in = (ctypes.c_uint * 1)(self.vr("cx"))
+        self._val_in = (ctypes.c_double * 1)()
+        out_names = ["Fx", "f"] + [n for n in EXTRA_OUTPUTS if n in self.vars]
+        self._out_names = out_names
+        self._vr_out = (ctypes.c_uint * len(out_names))(*[self.vr(n) for n in out_names])
+        self._val_out = (ctypes.c_double * len(out_names))()
+        self.f = 0.0
+
+    def vr(self, name):
+        try:
+            return self.vars[name].valueReference
+        except KeyError:
+            raise SystemExit(
+                f"error: FMU has no variable '{name}' (has: {', '.join(sorted(self.vars))})") from None
+
+    def _set_real(self, d):
+        self.fmu.setReal([self.vr(k) for k in d], list(d.values()))
+
+    def _set_parameters(self, model, preset, grid, transient, params):
+        fmu = self.fmu
+        if "model" in self.vars:
+            fmu.setString([self.vr("model")], [model])
+        if preset and "preset" in self.vars:
+            fmu.setString([self.vr("preset")], [preset])
+        if "transient" in self.vars:
+            fmu.setBoolean([self.vr("transient")], [bool(transient)])
+        if grid:
+            names = grid_variable_names(self.vars)
+            if not names:
+                raise SystemExit("error: FMU exposes no grid-size parameter; drop --grid")
+            fmu.setInteger([self.vr(names[0]), self.vr(names[1])], [int(grid[0]), int(grid[1])])
+        for k, val in params.items():
+            sv = self.vars.get(k)
+            if sv is None:
+                raise SystemExit(f"error: FMU has no parameter '{k}'")
+            if sv.type == "Real":
+                fmu.setReal([sv.valueReference], [float(val)])
+            elif sv.type == "Integer":
+                fmu.setInteger([sv.valueReference], [int(val)])
+            elif sv.type == "Boolean":
+                fmu.setBoolean([sv.valueReference], [bool(val)])
+            else:
+                fmu.setString([sv.valueReference], [str(val)])
+
+    def step(self, t, h, cx):
+        self._val_in[0] = cx
+        if self._setReal(self._c, self._vr_in, 1, self._val_in) > 1:
+            raise RuntimeError(f"fmi2SetReal failed at t = {t}")
+        if self._doStep(self._c, t, h, 1) > 1:
+            raise RuntimeError(f"fmi2DoStep failed at t = {t}, cx = {cx}")
+        if self._getReal(self._c, self._vr_out, len(self._out_names), self._val_out) > 1:
+            raise RuntimeError(f"fmi2GetReal failed at t = {t}")
+        self.f = self._val_out[1]
+        return self._val_out[0], self._val_out[1]
+
+    def extra(self):
+        return {n: self._val_out[i] for i, n in enumerate(self._out_names) if i >= 2}
+
+    def close(self):
+        try:
+            self.fmu.terminate()
+        finally:
+            self.fmu.freeInstance()
+
+
+def grid_variable_names(vars_):
+    """(nx, ny) integer parameter names of the FMU's grid size, or None."""
+    ints = [n for n, sv in vars_.items() if sv.type == "Integer"]
+    nx = [n for n in ints if "nx" in n.lower()]
+    ny = [n for n in ints if "ny" in n.lower()]
+    return (nx[0], ny[0]) if nx and ny else None
+
+
+def steady_curve_fmu(fmu_path, cx, model="ecf", v=5.0, F_N=110e3, T_bulk=20.0, preset=None, grid=None,
+                     params=None):
+    """Steady f(cx) from the FMU: one instance with transient off, one long step per creepage."""
+    c = FMUContact(fmu_path, model=model, v=v, F_N=F_N, T_bulk=T_bulk, preset=preset, grid=grid,
+                   transient=False, params=params, name="steady")
+    try:
+        out = []
+        t = 0.0
+        for x in np.atleast_1d(cx):
+            _, f = c.step(t, 1e-3, float(x))
+            t += 1e-3
+            out.append(f)
+        return np.array(out)
+    finally:
+        c.close()
+
+
+def make_contact(kind, fmu_path=None, **kw):
+    if kind == "curve":
+        return CurveContact(**kw)
+    if kind == "fmu":
+        return FMUContact(fmu_path, **kw)
+    raise SystemExit(f"error: unknown contact kind {kind!r} (fmu or curve)")
