@@ -73,8 +73,7 @@ def simulate(p: Params, contact_L, contact_S, v: float, c_des, t_end: float, h: 
     if not (h > 0 and t_end > 0):
         raise ValueError("h and t_end must be > 0")
     dt, ct = p.drivetrain, p.controller
-    A, B = model.state_space(dt, ct.tau_f)
-    Phi, Gam = model.discretize(A, B, h)
+    stepper = model.Stepper(dt, ct.tau_f, h)
     n = int(round(t_end / h))
     x = model.rolling_state(dt, v, 0.0)
     Ki = ct.K_p / ct.T_i if ct.T_i > 0 else 0.0
@@ -123,7 +122,7 @@ def simulate(p: Params, contact_L, contact_S, v: float, c_des, t_end: float, h: 
             else:
                 z += h * e
             u = np.array((0.5 * (F_old[0] + FL), 0.5 * (F_old[1] + FS), T))
-            x = Phi @ x + Gam @ u
+            x = stepper.step(x, u)
             F_old = [FL, FS]
             row(k + 1, t + h, cd, F_old, (fL, fS), T, contact_L.extra())
             if not np.all(np.isfinite(x)):

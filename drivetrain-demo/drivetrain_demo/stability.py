@@ -34,9 +34,15 @@ class Mode:
 
 
 def _describe(shape, phase):
+    """Text of a mode shape; participants above 0.25 grouped by phase (in phase with the largest / against it)."""
     parts = [f"{n} {a:.2f}@{p:+.0f}deg" for n, a, p in zip(NAMES, shape, phase)]
-    big = [NAMES[i] for i in np.argsort(shape)[::-1] if shape[i] > 0.25]
-    return ", ".join(parts) + " | dominant: " + " vs ".join(big[:3])
+    imax = int(np.argmax(shape))
+    big = [i for i in np.argsort(shape)[::-1] if shape[i] > 0.25]
+    rel = [((phase[i] - phase[imax] + 180.0) % 360.0) - 180.0 for i in range(len(shape))]
+    same = [NAMES[i] for i in big if abs(rel[i]) <= 90.0]
+    other = [NAMES[i] for i in big if abs(rel[i]) > 90.0]
+    txt = " + ".join(same) + (" against " + " + ".join(other) if other else " (in phase)")
+    return ", ".join(parts) + " | " + txt
 
 
 def undamped_modes(p: Params):

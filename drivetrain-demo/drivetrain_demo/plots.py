@@ -1,0 +1,141 @@
+"""PNG plots: creepage time series (seed Fig. 6.4/6.5), spectrum, f over c_x hysteresis (Fig. 6.6), ECF vs FASTSIM."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def _title(s):
+    return (f"{s['scenario']} | {s['model'].upper()} | v = {s['v_mps']:g} m/s | "
+            f"f_dom = {s['dominant_frequency_hz']:.1f} Hz | pred. {s['predicted_frequency_hz']:.1f} Hz "
+            f"({'unstable' if s['predicted_unstable'] else 'stable'})")
+
+
+def _timeseries(ax, res, zoom=None):
+    t = res["t_s"]
+    m = np.ones_like(t, bool) if zoom is None else (t >= zoom[0]) & (t <= zoom[1])
+    ax.plot(t[m], 100 * res["cx_L"][m], lw=0.8, label="$c_{x,L}$ (long axle)")
+    ax.plot(t[m], 100 * res["cx_S"][m], lw=0.8, label="$c_{x,S}$ (short axle)")
+    ax.plot(t[m], 100 * res["cx_M"][m], lw=0.8, label="$c_{x,M}$ (motor, Eq. 6.3)")
+    ax.plot(t[m], 100 * res["cx_des"][m], "k--", lw=0.8, label="$c_{x,des}$")
+    ax.set_xlabel("t / s")
+    ax.set_ylabel("$c_x$ / %")
+    ax.grid(alpha=0.3)
+
+
+def _spectrum(ax, s, spectrum):
+    freqs, spec = spectrum
+    if len(freqs):
+        m = freqs <= 300
+        ax.semilogy(freqs[m], np.maximum(spec[m], 1e-12), lw=0.8)
+    if s.get("predicted_frequency_hz"):
+        ax.axvline(s["predicted_frequency_hz"], color="r", ls="--", lw=0.8, label="linear prediction")
+    if s.get("dominant_frequency_hz"):
+        ax.axvline(s["dominant_frequency_hz"], color="k", ls=":", lw=0.8, label="dominant")
+    ax.set_xlabel("frequency / Hz")
+    ax.set_ylabel("|C_x,L| (amplitude)")
+    w = s.get("settled_window_s")
+    ax.set_title(f"spectrum of $c_{{x,L}}$" + (f", {w[0]:.2f}-{w[1]:.2f} s" if w else ""), fontsize=9)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+
+
+def _fc(ax, res, curve, t_from=None):
+    t = res["t_s"]
+    m = np.ones_like(t, bool) if t_from is None else t >= t_from
+    ax.plot(100 * res["cx_L"][m], res["f_L"][m], lw=0.6, label="$f_L$ over $c_{x,L}$ (simulation)")
+    ax.plot(100 * curve[0], curve[1], "k", lw=1.2, label="steady characteristic")
+    ax.set_xlabel("$c_{x,L}$ / %")
+    ax.set_ylabel("$f_L$")
+    ax.set_xlim(0, max(60, 100 * np.nanmax(res["cx_L"][m]) + 2))
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+
+
+def plot_run(path: Path, s: dict, results: dict) -> Path:
+    res = results["res"]
+    t_end = res["t_s"][-1]
+    fig, axs = plt.subplots(2, 2, figsize=(12, 8))
+    _timeseries(axs[0, 0], res)
+    axs[0, 0].legend(fontsize=7)
+    axs[0, 0].set_title("creepages (seed Fig. 6.4/6.5)", fontsize=9)
+    _timeseries(axs[0, 1], res, zoom=(t_end - 0.1, t_end))
+    axs[0, 1].set_title("last 0.1 s", fontsize=9)
+    _spectrum(axs[1, 0], s, results["spectrum"])
+    _fc(axs[1, 1], res, results["curve"], t_from=s["settled_window_s"][0])
+    axs[1, 1].set_title("traction over creepage, settled window (seed Fig. 6.6)", fontsize=9)
+    fig.suptitle(_title(s), fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_sine(path: Path, s: dict, results: dict) -> Path:
+    r = results["res"]
+    c_grid, f_grid = results["curve"]
+    t = r["t_s"]
+    period = 1.0 / s["frequency_prescribed_hz"]
+    fig, axs = plt.subplots(1, 2, figsize=(12, 4.8))
+    axs[0].plot(t * 1e3, 100 * r["cx"], lw=0.8, label="$c_x$ / %")
+    ax2 = axs[0].twinx()
+    ax2.plot(t * 1e3, r["f"], "r", lw=0.8, label="f")
+    axs[0].set_xlabel("t / ms")
+    axs[0].set_ylabel("$c_x$ / %")
+    ax2.set_ylabel("f", color="r")
+    axs[0].grid(alpha=0.3)
+    last = t >= t[-1] - period - 1e-12
+    axs[1].plot(100 * r["cx"][last], r["f"][last], "r", lw=1.2, label="transient, last period")
+    axs[1].plot(100 * r["cx"], r["f"], "r", lw=0.3, alpha=0.4, label="transient, all periods")
+    axs[1].plot(100 * c_grid, f_grid, "k", lw=1.2, label="steady characteristic")
+    axs[1].set_xlim(0, 100 * (s["cx_mean"] + s["cx_amplitude"]) + 5)
+    axs[1].set_xlabel("$c_x$ / %")
+    axs[1].set_ylabel("f")
+    axs[1].legend(fontsize=8)
+    axs[1].grid(alpha=0.3)
+    axs[1].set_title(f"hysteresis (seed Fig. 6.6): CV(RMSE) vs steady {s['cv_rmse_vs_steady_percent']:.1f} %, "
+                     f"loop area {s['hysteresis_loop_area']:.2e}", fontsize=9)
+    fig.suptitle(f"sine | {s['model'].upper()} | v = {s['v_mps']:g} m/s | c_m = {100 * s['cx_mean']:g} %, "
+                 f"c_A = {100 * s['cx_amplitude']:g} %, {s['frequency_prescribed_hz']:g} Hz", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_compare(path: Path, runs: list) -> Path:
+    """Side by side: one column per (summary, results) run, e.g. ECF and FASTSIM."""
+    n = len(runs)
+    fig, axs = plt.subplots(3, n, figsize=(6 * n, 11), squeeze=False)
+    for j, (s, results) in enumerate(runs):
+        res = results["res"]
+        if s["scenario"] == "sine":
+            c_grid, f_grid = results["curve"]
+            axs[0, j].plot(res["t_s"], 100 * res["cx"], lw=0.8)
+            axs[1, j].plot(res["t_s"], res["f"], lw=0.8)
+            axs[2, j].plot(100 * res["cx"], res["f"], "r", lw=0.8)
+            axs[2, j].plot(100 * c_grid, f_grid, "k")
+            axs[0, j].set_title(f"{s['model'].upper()}: sine", fontsize=10)
+            continue
+        _timeseries(axs[0, j], res)
+        axs[0, j].legend(fontsize=7)
+        axs[0, j].set_title(f"{s['model'].upper()}: f_dom = {s['dominant_frequency_hz']:.1f} Hz, "
+                            f"p-p(last 0.5 s) = {100 * s['oscillation_amplitude']:.2f} %", fontsize=10)
+        _spectrum(axs[1, j], s, results["spectrum"])
+        _fc(axs[2, j], res, results["curve"], t_from=s["settled_window_s"][0])
+    ylims = [ax.get_ylim() for ax in axs[0]]
+    for ax in axs[0]:
+        ax.set_ylim(min(y[0] for y in ylims), max(y[1] for y in ylims))
+    s0 = runs[0][0]
+    fig.suptitle(f"{s0['scenario']} at v = {s0['v_mps']:g} m/s: " + " vs ".join(s['model'].upper() for s, _ in runs),
+                 fontsize=11)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
