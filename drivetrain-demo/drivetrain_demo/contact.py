@@ -139,8 +139,11 @@ class FMUContact:
             fmu.setString([self.vr("model")], [model])
         if preset and "preset" in self.vars:
             fmu.setString([self.vr("preset")], [preset])
-        if "transient" in self.vars:
-            fmu.setBoolean([self.vr("transient")], [bool(transient)])
+        tname = next((n for n in ("transient", "effect_transient") if n in self.vars), None)
+        if tname:
+            fmu.setBoolean([self.vr(tname)], [bool(transient)])
+        elif not transient:
+            raise SystemExit("error: FMU has no `transient` parameter; cannot switch the transient model off")
         if grid:
             names = grid_variable_names(self.vars)
             if not names:
@@ -183,6 +186,8 @@ class FMUContact:
 def grid_variable_names(vars_):
     """(nx, ny) integer parameter names of the FMU's grid size, or None."""
     ints = [n for n, sv in vars_.items() if sv.type == "Integer"]
+    if "nx" in ints and "ny" in ints:
+        return "nx", "ny"
     nx = [n for n in ints if "nx" in n.lower()]
     ny = [n for n in ints if "ny" in n.lower()]
     return (nx[0], ny[0]) if nx and ny else None

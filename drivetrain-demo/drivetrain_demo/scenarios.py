@@ -265,9 +265,11 @@ def run_sine(cfg: RunConfig, p: Params, write=True, plot=True):
     Tmax = np.full(n + 1, np.nan)
     wall0 = time.perf_counter()
     try:
-        # creepage held over [t_k, t_k+1] at its mid-step value; output belongs to t_k+1
+        # creepage held over [t_k, t_k+1] at its mid-step value; the output at t_k+1 is
+        # recorded with the creepage that produced it
         for k in range(n):
             cmid = cm + ca * np.sin(2 * np.pi * f0 * (k + 0.5) * cfg.h)
+            cx[k + 1] = cmid
             Fx[k + 1], f[k + 1] = c1.step(k * cfg.h, cfg.h, cmid)
             Tmax[k + 1] = c1.extra().get("T_max", np.nan)
     finally:
