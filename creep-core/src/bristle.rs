@@ -115,7 +115,7 @@ pub fn update(
     let u0 = s.u;
     let u1 = [u0[0] + du[0], u0[1] + du[1]];
     s.u = u1;
-    if !(m.tc2 > 0.0) {
+    if m.tc2.is_nan() || m.tc2 <= 0.0 {
         s.tau = [0.0, 0.0];
         s.regime = Regime::Sliding;
         return;

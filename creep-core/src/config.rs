@@ -68,7 +68,7 @@ pub struct Grid {
 }
 
 /// Default grid: within 1 % of a 4x refined grid over 0.1 %-30 % creepage (docs/model.md).
-pub const DEFAULT_GRID: Grid = Grid { nx: 40, ny: 21 };
+pub const DEFAULT_GRID: Grid = Grid { nx: 80, ny: 21 };
 
 impl Grid {
     /// Parses "NXxNY".

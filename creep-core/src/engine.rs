@@ -166,7 +166,9 @@ impl Resolved {
             pressure: c.has(Effect::PressureDependence),
             temperature: c.has(Effect::Temperature),
             transient: c.has(Effect::Transient),
-            rule: if c.has(Effect::ElasticUnloading) {
+            // FASTSIM's clip onto the Coulomb bound is a radial return along the trial
+            // stress: the elastic-unloading rule with tau_c1 = tau_c2 = mu p.
+            rule: if c.has(Effect::ElasticUnloading) || c.has(Effect::Coulomb) {
                 Rule::ElasticUnloading
             } else {
                 Rule::SameCharacteristic
@@ -230,7 +232,6 @@ struct NodeP {
 
 /// Per-sub-step kinematic context of one strip.
 struct Kin {
-    v: f64,
     h: f64,
     dist: f64,
     cx: f64,
@@ -404,7 +405,6 @@ impl Contact {
             self.r.kappa_r,
         );
         Kin {
-            v: i.v,
             h,
             dist,
             cx: i.cx,
@@ -526,8 +526,7 @@ impl Contact {
         &self,
         k: &Kin,
         np: &NodeP,
-        x: f64,
-        y: f64,
+        [x, y]: [f64; 2],
         s: &mut BristleState,
         acc: &mut [f64; N_KERNEL],
         fac: &([f64; N_KERNEL], [f64; N_KERNEL]),
@@ -537,8 +536,8 @@ impl Contact {
         // Temperature from the heat history (all but the newest interval), Eq. 4.35.
         let t_hist = if self.r.temperature && k.heat {
             let mut sum = 0.0;
-            for i in 0..N_KERNEL {
-                sum += self.kernel.weights[i] * fac.0[i] * acc[i];
+            for ((w, d), a) in self.kernel.weights.iter().zip(fac.0.iter()).zip(acc.iter()) {
+                sum += w * d * a;
             }
             k.t_bulk + k.alpha_c * sum
         } else {
@@ -571,39 +570,61 @@ impl Contact {
             (ns, q)
         };
         let (mut ns, mut q) = eval(t_hist);
-        let mut t = t_hist;
         if self.r.temperature && q > 0.0 && self_c > 0.0 {
-            // Solve T = t_hist + self_c q(T): g(T) decreasing; bracket [t_hist, t_hist + self_c q(t_hist)],
-            // Illinois (regula falsi) iterations to 0.01 K.
+            // Solve T = t_hist + self_c q(T) for the smallest root above t_hist (the temperature
+            // the bristle reaches first while heating up; q(T) may rise with T where softening
+            // turns an elastic bristle plastic): fixed-point steps upward while
+            // g(T) = t_hist + self_c q(T) - T > 0, then Illinois regula falsi once bracketed;
+            // tolerance 0.01 K.
+            let g_of = |q: f64, t: f64| t_hist + self_c * q - t;
             let (mut ta, mut ga) = (t_hist, self_c * q);
-            let mut tb = t_hist + self_c * q;
-            let (sb, qb) = eval(tb);
-            let mut gb = t_hist + self_c * qb - tb;
-            ns = sb;
-            q = qb;
-            t = tb;
-            let mut side = 0;
-            for _ in 0..30 {
-                if gb.abs() < 0.01 || (tb - ta).abs() < 1e-3 {
+            let mut tb = ta + ga;
+            let mut bracketed = false;
+            let mut gb = 0.0;
+            for _ in 0..60 {
+                let (sb, qb) = eval(tb);
+                ns = sb;
+                q = qb;
+                gb = g_of(qb, tb);
+                if gb.abs() < 0.01 {
                     break;
                 }
-                let tc = tb - gb * (tb - ta) / (gb - ga);
-                let (sc, qc) = eval(tc);
-                let gc = t_hist + self_c * qc - tc;
-                ns = sc;
-                q = qc;
-                t = tc;
-                if gc * gb < 0.0 {
+                if gb > 0.0 {
                     ta = tb;
                     ga = gb;
-                    side = 0;
-                } else if side == 1 {
-                    ga *= 0.5;
+                    tb += gb;
                 } else {
-                    side = 1;
+                    bracketed = true;
+                    break;
                 }
-                tb = tc;
-                gb = gc;
+            }
+            if bracketed {
+                let mut side = 0;
+                for _ in 0..60 {
+                    let tc = tb - gb * (tb - ta) / (gb - ga);
+                    let (sc, qc) = eval(tc);
+                    let gc = g_of(qc, tc);
+                    ns = sc;
+                    q = qc;
+                    if gc.abs() < 0.01 || (tb - ta).abs() < 1e-6 {
+                        break;
+                    }
+                    if gc < 0.0 {
+                        tb = tc;
+                        gb = gc;
+                        if side == -1 {
+                            ga *= 0.5;
+                        }
+                        side = -1;
+                    } else {
+                        ta = tc;
+                        ga = gc;
+                        if side == 1 {
+                            gb *= 0.5;
+                        }
+                        side = 1;
+                    }
+                }
             }
         }
         ns.temp = if self.r.temperature {
@@ -615,8 +636,8 @@ impl Contact {
         *s = ns;
         if self.r.temperature && k.heat {
             let qw = q; // alpha is folded into alpha_c
-            for i in 0..N_KERNEL {
-                acc[i] = fac.0[i] * acc[i] + qw * fac.1[i];
+            for ((a, d), g) in acc.iter_mut().zip(fac.0.iter()).zip(fac.1.iter()) {
+                *a = d * *a + qw * g;
             }
         }
         q
@@ -645,12 +666,14 @@ impl Contact {
         let inside = if phase_end > 0.0 { nx } else { nx + 1 };
         for slot in 0..inside {
             let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
-            let np = self.node_p(xi, eta);
+            // material at the end of the sub-step (Eq. 4.5), but never closer to the trailing
+            // edge than half a cell: the last node stands for the last cell (docs/model.md)
             let x_mid = a * (xi + 0.5 * dist / a);
+            let np = self.node_p(xi.max(-self.ell[j] + 0.5 * dxi), eta);
             let id = self.idx(j, slot);
             let mut s = self.st[id];
             let mut acc = self.acc[id];
-            self.update_bristle(&kin, &np, x_mid, y, &mut s, &mut acc, &fac);
+            self.update_bristle(&kin, &np, [x_mid, y], &mut s, &mut acc, &fac);
             self.st[id] = s;
             self.acc[id] = acc;
         }
@@ -772,9 +795,9 @@ impl Contact {
             self.acc[base] = acc;
             for slot in 1..=self.nx {
                 let xi = self.ell[j] - slot as f64 * dxi;
-                let np = self.node_p(xi, eta);
                 let x_mid = a * (xi + 0.5 * dx / a);
-                self.update_bristle(&kin, &np, x_mid, y, &mut s, &mut acc, &fac);
+                let np = self.node_p(xi.max(-self.ell[j] + 0.5 * dxi), eta);
+                self.update_bristle(&kin, &np, [x_mid, y], &mut s, &mut acc, &fac);
                 self.st[base + slot] = s;
                 self.acc[base + slot] = acc;
             }

@@ -45,8 +45,7 @@ pub fn polach(cfg: &Config, i: &Inputs) -> Result<Outputs> {
     let w = s * i.v;
     let mu = p.si(P::PolMu0) * ((1.0 - p.si(P::PolA)) * (-p.si(P::PolB) * w).exp() + p.si(P::PolA));
     let cjj = ((c.c11 * i.cx / s).powi(2) + (c.c22 * i.cy / s).powi(2)).sqrt();
-    let area_b = if patch.line { b } else { b };
-    let eps = PI * p.si(P::G) * a * area_b * cjj * s / (4.0 * i.fn_n * mu.max(1e-12));
+    let eps = PI * p.si(P::G) * a * b * cjj * s / (4.0 * i.fn_n * mu.max(1e-12));
     let (k_a, k_s) = (p.si(P::PolKA), p.si(P::PolKS));
     let f = 2.0 * i.fn_n * mu / PI * (k_a * eps / (1.0 + (k_a * eps).powi(2)) + (k_s * eps).atan());
     out.fx = f * i.cx / s;

@@ -181,7 +181,10 @@ impl Model {
         let cfg = std::str::from_utf8(r.take(n)?)
             .map_err(|_| CreepError::State("configuration is not UTF-8".into()))?
             .to_string();
-        if cfg != self.config().to_json().to_string() {
+        let same = serde_json::from_str::<serde_json::Value>(&cfg)
+            .map(|v| v == self.config().to_json())
+            .unwrap_or(false);
+        if !same {
             return Err(CreepError::State(
                 "the state was saved with a different configuration".into(),
             ));

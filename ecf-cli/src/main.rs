@@ -91,10 +91,10 @@ struct ModelArgs {
     #[arg(long)]
     mu: Option<f64>,
     /// Vehicle speed, m/s (>= 0)
-    #[arg(long, default_value_t = 20.0)]
+    #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
     v_mps: f64,
     /// Normal force, kN (> 0)
-    #[arg(long, default_value_t = 110.0)]
+    #[arg(long, default_value_t = 110.0, allow_negative_numbers = true)]
     fn_kn: f64,
     /// Semi-axis in rolling direction at this load, mm (with --b-mm)
     #[arg(long)]
@@ -296,13 +296,13 @@ fn out_row(o: &Outputs) -> String {
 }
 
 fn run(cli: Cli) -> Result<(), CreepError> {
-    let stdout = std::io::stdout();
-    let mut w = std::io::BufWriter::new(stdout.lock());
+    // The whole table is built first and printed only on success: nothing half-written.
+    let mut w: Vec<u8> = Vec::new();
     let io = |e: std::io::Error| CreepError::Config {
         source_name: "stdout".into(),
         message: e.to_string(),
     };
-    let mut warn = |m: &mut Model| {
+    let warn = |m: &mut Model| {
         for msg in m.take_warnings() {
             eprintln!("warning: {msg}");
         }
@@ -450,7 +450,10 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             }
         }
     }
-    w.flush().map_err(io)?;
+    let stdout = std::io::stdout();
+    let mut lock = stdout.lock();
+    lock.write_all(&w).map_err(io)?;
+    lock.flush().map_err(io)?;
     Ok(())
 }
 

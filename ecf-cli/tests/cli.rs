@@ -1,0 +1,140 @@
+//! The `ecf` binary: CSV output with headers, and clear errors (flag, value, accepted range, exit code != 0) for bad input.
+use std::process::Command;
+
+fn ecf(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_ecf"))
+        .args(args)
+        .output()
+        .expect("run ecf");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+#[test]
+fn curve_prints_csv_with_header_and_units_in_names() {
+    let (code, out, err) = ecf(&[
+        "curve",
+        "--preset",
+        "table4.1",
+        "--v-mps",
+        "20",
+        "--fn-kn",
+        "110",
+        "--a-mm",
+        "7.63",
+        "--b-mm",
+        "7.88",
+        "--cx",
+        "0.001:0.5:5",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert!(
+        lines[0].starts_with("cx,f,Fx_N,Fy_N,Mz_Nm,T_max_C"),
+        "{}",
+        lines[0]
+    );
+    assert_eq!(lines.len(), 6);
+    let f: Vec<f64> = lines[1..]
+        .iter()
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    assert!(f.iter().all(|x| *x > 0.0 && *x < 0.6), "{f:?}");
+}
+
+#[test]
+fn step_sine_and_field_run() {
+    let (code, out, err) = ecf(&[
+        "step",
+        "--preset",
+        "table4.1",
+        "--v-mps",
+        "5",
+        "--cx-from",
+        "0.001",
+        "--cx-to",
+        "0.01",
+        "--duration-ms",
+        "1",
+        "--dt-ms",
+        "0.1",
+        "--grid",
+        "20x7",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.starts_with("t_s,cx,f,"));
+    assert_eq!(out.lines().count(), 12);
+    let (code, out, err) = ecf(&[
+        "sine",
+        "--model",
+        "fastsim",
+        "--v-mps",
+        "5",
+        "--cm",
+        "0.01",
+        "--ca",
+        "0.005",
+        "--freq-hz",
+        "100",
+        "--cycles",
+        "1",
+        "--grid",
+        "20x7",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.lines().count(), 202);
+    let (code, out, err) = ecf(&["field", "--preset", "dry", "--cx", "0.05", "--grid", "20x7"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.starts_with("x_mm,tau_Pa"));
+}
+
+#[test]
+fn bad_input_names_the_flag_and_range_and_fails() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["curve", "--v-mps", "-5", "--cx", "0.01"], "--v-mps"),
+        (&["curve", "--v-mps", "NaN", "--cx", "0.01"], "--v-mps"),
+        (&["curve", "--fn-kn", "0", "--cx", "0.01"], "--fn-kN"),
+        (&["curve", "--grid", "0x5", "--cx", "0.01"], "--grid"),
+        (&["curve", "--preset", "moist", "--cx", "0.01"], "moist"),
+        (&["curve", "--cx", "0.01,abc"], "--cx"),
+        (&["curve", "--cx", "20"], "--cx"),
+        (&["curve", "--a-mm", "7"], "--a-mm"),
+        (&["curve", "--param", "nu=0.9", "--cx", "0.01"], "nu"),
+    ];
+    for (args, needle) in cases {
+        let (code, _, err) = ecf(args);
+        assert_ne!(code, 0, "{args:?} must fail");
+        assert!(
+            err.contains(needle),
+            "{args:?}: '{err}' should name {needle}"
+        );
+        assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    }
+}
+
+#[test]
+fn malformed_config_file_reports_line_and_column() {
+    let dir = std::env::temp_dir().join(format!("ecf-cli-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("bad.json");
+    std::fs::write(
+        &p,
+        "{\n  \"model\": \"ecf\",\n  \"params\": {\"tau_c1_0_GPa\": }\n}\n",
+    )
+    .unwrap();
+    let (code, _, err) = ecf(&["curve", "--config", p.to_str().unwrap(), "--cx", "0.01"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("bad.json") && err.contains("line 3"), "{err}");
+    let (code, _, err) = ecf(&[
+        "curve",
+        "--config",
+        dir.join("missing.json").to_str().unwrap(),
+        "--cx",
+        "0.01",
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("missing.json"), "{err}");
+}
