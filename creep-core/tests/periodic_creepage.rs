@@ -10,7 +10,9 @@ fn coarse() -> creep_core::Config {
 }
 
 /// Runs `cycles` periods; returns per-period samples of (cx, f) of the last two periods.
-fn run(f0: f64, cm: f64, ca: f64, cycles: usize, n: usize) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+type Loop = Vec<(f64, f64)>;
+
+fn run(f0: f64, cm: f64, ca: f64, cycles: usize, n: usize) -> (Loop, Loop) {
     let cfg = coarse();
     let mut m = Model::new(&cfg).unwrap();
     m.steady(&vectron(cm, 5.0)).unwrap();
