@@ -1,0 +1,1149 @@
+//! One FMU instance as a safe state machine: settings, inputs, the core model, FMI call rules, and messages for the logger.
+
+use crate::vars::{self, Causality, Geo, In, Kind, Slot, Start, Var};
+use creep_core::effects::{self, Effect};
+use creep_core::params::{self, P};
+use creep_core::{Config, Geometry, Grid, Inputs, Model, ModelKind, Outputs};
+use std::collections::{BTreeMap, HashMap, HashSet};
+use std::path::{Path, PathBuf};
+
+/// FMI status of a call.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Status {
+    /// fmi2OK.
+    Ok,
+    /// fmi2Warning.
+    Warning,
+    /// fmi2Discard.
+    Discard,
+    /// fmi2Error.
+    Error,
+}
+
+/// State of the FMI 2.0 Co-Simulation state machine.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    /// After fmi2Instantiate or fmi2Reset.
+    Instantiated,
+    /// Between fmi2EnterInitializationMode and fmi2ExitInitializationMode.
+    Initialization,
+    /// Initialized: fmi2DoStep may be called.
+    StepComplete,
+    /// After fmi2Terminate.
+    Terminated,
+    /// After an internal error (panic): only reset, set state and free are useful.
+    Error,
+}
+
+impl Phase {
+    fn name(self) -> &'static str {
+        match self {
+            Phase::Instantiated => "Instantiated",
+            Phase::Initialization => "InitializationMode",
+            Phase::StepComplete => "StepComplete",
+            Phase::Terminated => "Terminated",
+            Phase::Error => "Error",
+        }
+    }
+}
+
+/// A message for the importer's logger.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LogMsg {
+    /// Status the message reports.
+    pub status: Status,
+    /// Log category (see `model_description::LOG_CATEGORIES`).
+    pub category: &'static str,
+    /// The message, already formatted.
+    pub text: String,
+}
+
+/// Parameter settings as the importer gave them; everything not given comes from the
+/// preset or configuration file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    /// Model family name.
+    pub model: String,
+    /// True once `model` was set by the importer.
+    pub model_set: bool,
+    /// Preset name ("" = the model's default).
+    pub preset: String,
+    /// Configuration file ("" = none).
+    pub config_file: String,
+    /// Parameters set by the importer (display units).
+    pub params: BTreeMap<P, f64>,
+    /// Effect switches set by the importer.
+    pub effects: BTreeMap<Effect, bool>,
+    /// Grid cells per strip, if set.
+    pub nx: Option<usize>,
+    /// Grid strips, if set.
+    pub ny: Option<usize>,
+    /// Geometry mode: 0 configuration, 1 semi-axes, 2 curvatures.
+    pub geometry: i32,
+    /// Geometry values set by the importer (a_ref, b_ref, FN_ref, Rx, Ry), SI.
+    pub geo: [Option<f64>; 5],
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            model: "ecf".into(),
+            model_set: false,
+            preset: String::new(),
+            config_file: String::new(),
+            params: BTreeMap::new(),
+            effects: BTreeMap::new(),
+            nx: None,
+            ny: None,
+            geometry: 0,
+            geo: [None; 5],
+        }
+    }
+}
+
+/// Everything an FMU state holds: settings, inputs, time and the whole core model
+/// (bristle grid and heat histories).
+#[derive(Clone, Debug)]
+pub struct Snapshot {
+    /// Parameter settings.
+    pub settings: Settings,
+    /// Input values as set (FN not clamped).
+    pub inputs: [f64; 6],
+    /// Communication time, s.
+    pub time: f64,
+    /// Resolved configuration (None if it was not resolved when the state was taken).
+    pub cfg: Option<Config>,
+    /// The core model (None before initialization).
+    pub model: Option<Model>,
+}
+
+/// One instance of the contact FMU.
+pub struct Instance {
+    /// Instance name given by the importer.
+    pub name: String,
+    resources: Option<PathBuf>,
+    table: Vec<Var>,
+    index: HashMap<u32, usize>,
+    settings: Settings,
+    inputs: [f64; 6],
+    phase: Phase,
+    time: f64,
+    cfg: Option<Config>,
+    model: Option<Model>,
+    /// True if `model` holds the outputs of the current inputs and settings (Init mode).
+    model_current: bool,
+    restored: bool,
+    logs: Vec<LogMsg>,
+    log_events: bool,
+    seen: HashSet<String>,
+}
+
+fn geo_index(g: Geo) -> usize {
+    match g {
+        Geo::ARef => 0,
+        Geo::BRef => 1,
+        Geo::FnRef => 2,
+        Geo::Rx => 3,
+        Geo::Ry => 4,
+    }
+}
+
+fn input_index(i: In) -> usize {
+    match i {
+        In::Cx => 0,
+        In::Cy => 1,
+        In::Spin => 2,
+        In::V => 3,
+        In::Fn => 4,
+        In::TBulk => 5,
+    }
+}
+
+/// The core inputs of FMU input values (FN <= 0 is lift-off: F_N = 0).
+pub fn core_inputs(x: &[f64; 6]) -> Inputs {
+    Inputs {
+        cx: x[0],
+        cy: x[1],
+        spin: x[2],
+        v: x[3],
+        // NaN stays NaN so that validation rejects it
+        fn_n: if x[4] < 0.0 { 0.0 } else { x[4] },
+        t_bulk: x[5],
+    }
+}
+
+/// Turns a file URI (fmuResourceLocation) into a path: `file:///a/b%20c/` -> `/a/b c/`.
+pub fn uri_to_path(uri: &str) -> Option<PathBuf> {
+    let rest = uri
+        .strip_prefix("file://")
+        .or_else(|| uri.strip_prefix("file:"))?;
+    // file://host/path: only an empty host or localhost is local
+    let rest = if let Some(r) = rest.strip_prefix("localhost/") {
+        format!("/{r}")
+    } else {
+        rest.to_string()
+    };
+    if !rest.starts_with('/') {
+        return None;
+    }
+    let bytes = rest.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' && i + 2 < bytes.len() {
+            let hex = std::str::from_utf8(&bytes[i + 1..i + 3]).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    Some(PathBuf::from(String::from_utf8(out).ok()?))
+}
+
+impl Instance {
+    /// A new instance; `resource_uri` is the importer's fmuResourceLocation.
+    pub fn new(name: &str, resource_uri: Option<&str>, logging_on: bool) -> Self {
+        let table = vars::table();
+        let index = table.iter().enumerate().map(|(i, v)| (v.vr, i)).collect();
+        let mut inst = Instance {
+            name: name.to_string(),
+            resources: resource_uri.and_then(uri_to_path),
+            table,
+            index,
+            settings: Settings::default(),
+            inputs: [0.0; 6],
+            phase: Phase::Instantiated,
+            time: 0.0,
+            cfg: None,
+            model: None,
+            model_current: false,
+            restored: false,
+            logs: Vec::new(),
+            log_events: logging_on,
+            seen: HashSet::new(),
+        };
+        inst.reset_values();
+        if let Some(u) = resource_uri {
+            if inst.resources.is_none() {
+                inst.warn(format!("fmi2Instantiate: fmuResourceLocation '{u}' is not a local file URI; relative config_file paths cannot be resolved"));
+            }
+        }
+        inst
+    }
+
+    fn reset_values(&mut self) {
+        self.settings = Settings::default();
+        for v in &self.table {
+            if let (Slot::Input(i), Start::Real(x)) = (v.slot, &v.start) {
+                self.inputs[input_index(i)] = *x;
+            }
+        }
+        self.phase = Phase::Instantiated;
+        self.time = 0.0;
+        self.cfg = None;
+        self.model = None;
+        self.model_current = false;
+        self.restored = false;
+        self.seen.clear();
+    }
+
+    /// The current phase.
+    pub fn phase(&self) -> Phase {
+        self.phase
+    }
+
+    /// Communication time, s.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The variable table.
+    pub fn table(&self) -> &[Var] {
+        &self.table
+    }
+
+    /// The core model (after initialization).
+    pub fn model(&self) -> Option<&Model> {
+        self.model.as_ref()
+    }
+
+    /// Drains the messages for the logger.
+    pub fn take_logs(&mut self) -> Vec<LogMsg> {
+        std::mem::take(&mut self.logs)
+    }
+
+    /// Logs an error and returns `Status::Error`.
+    pub fn error(&mut self, text: String) -> Status {
+        self.logs.push(LogMsg {
+            status: Status::Error,
+            category: "logStatusError",
+            text,
+        });
+        Status::Error
+    }
+
+    /// Logs a warning and returns `Status::Warning`.
+    pub fn warn(&mut self, text: String) -> Status {
+        self.logs.push(LogMsg {
+            status: Status::Warning,
+            category: "logStatusWarning",
+            text,
+        });
+        Status::Warning
+    }
+
+    fn event(&mut self, text: String) {
+        if self.log_events {
+            self.logs.push(LogMsg {
+                status: Status::Ok,
+                category: "logEvents",
+                text,
+            });
+        }
+    }
+
+    /// An internal failure (a caught panic): the instance goes to the error state.
+    pub fn internal_error(&mut self, func: &str, what: &str) -> Status {
+        self.phase = Phase::Error;
+        self.error(format!("{func}: internal error ({what}); the instance is in the error state, call fmi2Reset or fmi2SetFMUstate"))
+    }
+
+    /// fmi2SetDebugLogging: switches categories (all of them if `categories` is empty).
+    /// Warnings and errors are always reported; the switch controls the debug category.
+    pub fn set_debug_logging(&mut self, on: bool, categories: &[String]) -> Status {
+        if categories.is_empty() {
+            self.log_events = on;
+            return Status::Ok;
+        }
+        let mut st = Status::Ok;
+        for c in categories {
+            match c.as_str() {
+                "logEvents" => self.log_events = on,
+                "logStatusWarning" | "logStatusError" => {}
+                _ => {
+                    st = st.max(self.error(format!(
+                        "fmi2SetDebugLogging: unknown log category '{c}'; accepted: logEvents, logStatusWarning, logStatusError"
+                    )))
+                }
+            }
+        }
+        st
+    }
+
+    fn check_phase(&mut self, func: &str, allowed: &[Phase]) -> Result<(), Status> {
+        if allowed.contains(&self.phase) {
+            Ok(())
+        } else {
+            let names: Vec<&str> = allowed.iter().map(|p| p.name()).collect();
+            Err(self.error(format!(
+                "{func}: not allowed in state {} (allowed in: {})",
+                self.phase.name(),
+                names.join(", ")
+            )))
+        }
+    }
+
+    /// fmi2SetupExperiment.
+    pub fn setup_experiment(&mut self, start: f64) -> Status {
+        if let Err(s) = self.check_phase("fmi2SetupExperiment", &[Phase::Instantiated]) {
+            return s;
+        }
+        if !start.is_finite() {
+            return self.error(format!(
+                "fmi2SetupExperiment: startTime = {start} must be finite"
+            ));
+        }
+        self.time = start;
+        Status::Ok
+    }
+
+    /// fmi2EnterInitializationMode.
+    pub fn enter_initialization(&mut self) -> Status {
+        if let Err(s) = self.check_phase("fmi2EnterInitializationMode", &[Phase::Instantiated]) {
+            return s;
+        }
+        self.phase = Phase::Initialization;
+        Status::Ok
+    }
+
+    /// fmi2ExitInitializationMode: resolves the configuration, builds the model and sets
+    /// its bristle grid to the steady state of the current inputs.
+    pub fn exit_initialization(&mut self) -> Status {
+        if let Err(s) = self.check_phase("fmi2ExitInitializationMode", &[Phase::Initialization]) {
+            return s;
+        }
+        let mut st = Status::Ok;
+        if self.settings.geometry != 1 {
+            for (i, n) in ["a_ref", "b_ref", "FN_ref"].iter().enumerate() {
+                if self.settings.geo[i].is_some() {
+                    st = st.max(self.warn(format!("fmi2ExitInitializationMode: {n} was set but geometry = {} (not 1, semi-axes): {n} is ignored", self.settings.geometry)));
+                }
+            }
+        }
+        if self.settings.geometry != 2 {
+            for (i, n) in ["Rx", "Ry"].iter().enumerate() {
+                if self.settings.geo[3 + i].is_some() {
+                    st = st.max(self.warn(format!("fmi2ExitInitializationMode: {n} was set but geometry = {} (not 2, curvatures): {n} is ignored", self.settings.geometry)));
+                }
+            }
+        }
+        if self.restored && self.model.is_some() {
+            self.event(
+                "fmi2ExitInitializationMode: continuing from the FMU state set before".into(),
+            );
+        } else if let Err(e) = self.current_outputs() {
+            return self.error(format!("fmi2ExitInitializationMode: {e}"));
+        }
+        self.phase = Phase::StepComplete;
+        let cfg = self
+            .model
+            .as_ref()
+            .map(|m| m.config().to_json().to_string())
+            .unwrap_or_default();
+        self.event(format!(
+            "fmi2ExitInitializationMode: initialized at t = {} s with {cfg}",
+            self.time
+        ));
+        st.max(self.drain_model_warnings("fmi2ExitInitializationMode"))
+    }
+
+    /// fmi2Terminate.
+    pub fn terminate(&mut self) -> Status {
+        if let Err(s) = self.check_phase("fmi2Terminate", &[Phase::StepComplete]) {
+            return s;
+        }
+        self.phase = Phase::Terminated;
+        Status::Ok
+    }
+
+    /// fmi2Reset: back to the state after instantiation, with start values.
+    pub fn reset(&mut self) -> Status {
+        self.reset_values();
+        Status::Ok
+    }
+
+    fn drain_model_warnings(&mut self, func: &str) -> Status {
+        let ws = self
+            .model
+            .as_mut()
+            .map(|m| m.take_warnings())
+            .unwrap_or_default();
+        let mut st = Status::Ok;
+        for w in ws {
+            if self.seen.insert(w.clone()) {
+                st = st.max(self.warn(format!("{func}: {w} (reported once)")));
+            }
+        }
+        st
+    }
+
+    /// fmi2DoStep: advances the contact by `h` seconds with the inputs held constant.
+    pub fn do_step(&mut self, t: f64, h: f64) -> Status {
+        if let Err(s) = self.check_phase("fmi2DoStep", &[Phase::StepComplete]) {
+            return s;
+        }
+        if !(h.is_finite() && h >= 0.0) {
+            return self.error(format!(
+                "fmi2DoStep: communicationStepSize = {h} must be finite and >= 0 s"
+            ));
+        }
+        let tol = 1e-9 * self.time.abs().max(1.0);
+        if !t.is_finite() || (t - self.time).abs() > tol {
+            return self.error(format!(
+                "fmi2DoStep: currentCommunicationPoint = {t} s, but the FMU is at t = {} s (set an FMU state to go back in time)",
+                self.time
+            ));
+        }
+        let inputs = core_inputs(&self.inputs);
+        let Some(model) = self.model.as_mut() else {
+            return self.error("fmi2DoStep: no model (not initialized)".into());
+        };
+        if let Err(e) = model.step(h, &inputs) {
+            return self.error(format!(
+                "fmi2DoStep: step of {h} s from t = {t} s failed: {e}"
+            ));
+        }
+        self.time = t + h;
+        self.drain_model_warnings("fmi2DoStep")
+    }
+
+    fn var(&mut self, func: &str, vr: u32, kind: Kind) -> Result<Var, Status> {
+        match self.index.get(&vr) {
+            None => Err(self.error(format!("{func}: unknown value reference {vr}"))),
+            Some(&i) => {
+                let v = &self.table[i];
+                if v.kind != kind {
+                    let msg = format!(
+                        "{func}: variable {} (value reference {vr}) is of type {}, not {}",
+                        v.name,
+                        v.kind.name(),
+                        kind.name()
+                    );
+                    Err(self.error(msg))
+                } else {
+                    Ok(v.clone())
+                }
+            }
+        }
+    }
+
+    fn check_settable(&mut self, func: &str, v: &Var) -> Result<(), Status> {
+        let ok = match v.causality {
+            Causality::Output => false,
+            Causality::Input => matches!(
+                self.phase,
+                Phase::Instantiated | Phase::Initialization | Phase::StepComplete
+            ),
+            Causality::Parameter => {
+                matches!(self.phase, Phase::Instantiated | Phase::Initialization)
+            }
+        };
+        if ok {
+            return Ok(());
+        }
+        let why = match v.causality {
+            Causality::Output => "it is an output".to_string(),
+            Causality::Parameter => format!(
+                "it is a fixed parameter and the FMU is in state {} (set it before fmi2ExitInitializationMode)",
+                self.phase.name()
+            ),
+            Causality::Input => format!("inputs cannot be set in state {}", self.phase.name()),
+        };
+        Err(self.error(format!(
+            "{func}: cannot set {} (value reference {}): {why}",
+            v.name, v.vr
+        )))
+    }
+
+    fn check_gettable(&mut self, func: &str) -> Result<(), Status> {
+        self.check_phase(
+            func,
+            &[
+                Phase::Initialization,
+                Phase::StepComplete,
+                Phase::Terminated,
+                Phase::Error,
+            ],
+        )
+    }
+
+    fn settings_changed(&mut self) {
+        self.cfg = None;
+        self.model_current = false;
+        self.restored = false;
+        if self.phase != Phase::StepComplete {
+            self.model = None;
+        }
+    }
+
+    /// Path of a configuration file: absolute, or relative to the FMU's resources/.
+    pub fn config_path(&self, file: &str) -> Result<PathBuf, String> {
+        let p = Path::new(file);
+        if p.is_absolute() {
+            return Ok(p.to_path_buf());
+        }
+        match &self.resources {
+            Some(r) => Ok(r.join(p)),
+            None => Err(format!(
+                "config_file '{file}' is relative, but the importer gave no local fmuResourceLocation to resolve it against"
+            )),
+        }
+    }
+
+    fn base_config(&self) -> Result<Config, String> {
+        let s = &self.settings;
+        let check_model = |c: &Config, what: &str| -> Result<(), String> {
+            if s.model_set && c.model.name() != s.model {
+                Err(format!(
+                    "model = '{}' but {what} is a '{}' configuration",
+                    s.model,
+                    c.model.name()
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        if !s.config_file.is_empty() {
+            if !s.preset.is_empty() {
+                return Err(format!(
+                    "preset = '{}' and config_file = '{}' are both set; set one of them (a configuration file can name a preset itself)",
+                    s.preset, s.config_file
+                ));
+            }
+            let path = self.config_path(&s.config_file)?;
+            let c = Config::from_file(&path).map_err(|e| format!("config_file: {e}"))?;
+            check_model(&c, &format!("config_file '{}'", s.config_file))?;
+            Ok(c)
+        } else if !s.preset.is_empty() {
+            let c = Config::preset(&s.preset).map_err(|e| format!("preset: {e}"))?;
+            check_model(&c, &format!("preset '{}'", s.preset))?;
+            Ok(c)
+        } else {
+            Config::for_model(&s.model).map_err(|e| format!("model: {e}"))
+        }
+    }
+
+    /// Resolves the configuration: preset or file, then every parameter the importer set.
+    pub fn resolve(&self) -> Result<Config, String> {
+        let s = &self.settings;
+        let mut cfg = self.base_config()?;
+        for (p, x) in &s.params {
+            cfg.params.set(*p, *x).map_err(|e| e.to_string())?;
+        }
+        for (e, on) in &s.effects {
+            if *on {
+                cfg.effects.insert(*e);
+            } else {
+                cfg.effects.remove(*e);
+            }
+        }
+        let grid = Grid {
+            nx: s.nx.unwrap_or(cfg.grid.nx),
+            ny: s.ny.unwrap_or(cfg.grid.ny),
+        };
+        grid.validate().map_err(|e| e.to_string())?;
+        cfg.grid = grid;
+        let base_semi = match cfg.geometry {
+            Geometry::SemiAxes { a, b, fn_ref } => Some([a, b, fn_ref]),
+            _ => None,
+        };
+        let start = |i: usize| -> f64 {
+            match &self
+                .table
+                .iter()
+                .find(|v| v.slot == Slot::Geo(GEOS[i]))
+                .map(|v| v.start.clone())
+            {
+                Some(Start::Real(x)) => *x,
+                _ => 1.0,
+            }
+        };
+        match s.geometry {
+            1 => {
+                let g = |i: usize| {
+                    s.geo[i]
+                        .or(base_semi.map(|b| b[i]))
+                        .unwrap_or_else(|| start(i))
+                };
+                cfg.geometry = Geometry::SemiAxes {
+                    a: g(0),
+                    b: g(1),
+                    fn_ref: g(2),
+                };
+            }
+            2 => {
+                let (rx0, ry0) = match cfg.geometry {
+                    Geometry::Curvatures { rx, ry } => (rx, ry),
+                    _ => (start(3), start(4)),
+                };
+                cfg.geometry = Geometry::Curvatures {
+                    rx: s.geo[3].unwrap_or(rx0),
+                    ry: s.geo[4].unwrap_or(ry0),
+                };
+            }
+            _ => {}
+        }
+        if cfg.model == ModelKind::Fastsim && !cfg.effects.has(Effect::Coulomb) {
+            return Err("model fastsim needs effect_coulomb = true".into());
+        }
+        Ok(cfg)
+    }
+
+    fn config(&mut self) -> Result<&Config, String> {
+        if self.cfg.is_none() {
+            self.cfg = Some(self.resolve()?);
+        }
+        self.cfg
+            .as_ref()
+            .ok_or_else(|| "no configuration".to_string())
+    }
+
+    /// The outputs for the current inputs: after initialization those of the last step; in
+    /// initialization mode, the steady state of the current inputs (the model is built).
+    fn current_outputs(&mut self) -> Result<Outputs, String> {
+        if self.phase != Phase::Initialization {
+            return self
+                .model
+                .as_ref()
+                .map(|m| m.outputs())
+                .ok_or_else(|| "the model is not initialized".to_string());
+        }
+        if !self.model_current || self.model.is_none() {
+            let cfg = self.config()?.clone();
+            let rebuild = self
+                .model
+                .as_ref()
+                .map(|m| m.config() != &cfg)
+                .unwrap_or(true);
+            if rebuild {
+                self.model = Some(Model::new(&cfg).map_err(|e| e.to_string())?);
+            }
+            let inputs = core_inputs(&self.inputs);
+            if let Some(m) = self.model.as_mut() {
+                m.steady(&inputs).map_err(|e| e.to_string())?;
+            }
+            self.model_current = true;
+            self.restored = false;
+        }
+        Ok(self.model.as_ref().map(|m| m.outputs()).unwrap_or_default())
+    }
+
+    /// fmi2GetReal of one variable.
+    pub fn get_real(&mut self, vr: u32) -> Result<f64, Status> {
+        const F: &str = "fmi2GetReal";
+        self.check_gettable(F)?;
+        let v = self.var(F, vr, Kind::Real)?;
+        match v.slot {
+            Slot::Input(i) => Ok(self.inputs[input_index(i)]),
+            Slot::Output(o) => match self.current_outputs() {
+                Ok(out) => Ok(o.of(&out)),
+                Err(e) => Err(self.error(format!("{F}: {} cannot be computed: {e}", v.name))),
+            },
+            Slot::Param(p) => {
+                if let Some(x) = self.settings.params.get(&p) {
+                    return Ok(*x);
+                }
+                match self.config() {
+                    Ok(c) => Ok(c.params.get(p)),
+                    Err(e) => Err(self.error(format!("{F}: {}: configuration error: {e}", v.name))),
+                }
+            }
+            Slot::Geo(g) => {
+                let i = geo_index(g);
+                if let Some(x) = self.settings.geo[i] {
+                    return Ok(x);
+                }
+                let start = match v.start {
+                    Start::Real(x) => x,
+                    _ => 0.0,
+                };
+                match self.config() {
+                    Ok(c) => Ok(match (c.geometry, g) {
+                        (Geometry::SemiAxes { a, .. }, Geo::ARef) => a,
+                        (Geometry::SemiAxes { b, .. }, Geo::BRef) => b,
+                        (Geometry::SemiAxes { fn_ref, .. }, Geo::FnRef) => fn_ref,
+                        (Geometry::Curvatures { rx, .. }, Geo::Rx) => rx,
+                        (Geometry::Curvatures { ry, .. }, Geo::Ry) => ry,
+                        _ => start,
+                    }),
+                    Err(e) => Err(self.error(format!("{F}: {}: configuration error: {e}", v.name))),
+                }
+            }
+            _ => Err(self.error(format!("{F}: {} is not a Real", v.name))),
+        }
+    }
+
+    /// fmi2SetReal of one variable.
+    pub fn set_real(&mut self, vr: u32, x: f64) -> Status {
+        const F: &str = "fmi2SetReal";
+        let v = match self.var(F, vr, Kind::Real) {
+            Ok(v) => v,
+            Err(s) => return s,
+        };
+        if let Err(s) = self.check_settable(F, &v) {
+            return s;
+        }
+        match v.slot {
+            Slot::Input(i) => {
+                if !x.is_finite() {
+                    return self.error(format!(
+                        "{F}: {} = {x} rejected (value unchanged): inputs must be finite",
+                        v.name
+                    ));
+                }
+                let k = input_index(i);
+                let mut cand = self.inputs;
+                cand[k] = x;
+                if let Err(e) = core_inputs(&cand).validate() {
+                    return self.error(format!(
+                        "{F}: {} = {x} rejected (value unchanged): {e}",
+                        v.name
+                    ));
+                }
+                self.inputs = cand;
+                self.model_current = false;
+                match i {
+                    In::Cx | In::Cy if x.abs() > 1.0 => self.warn(format!(
+                        "{F}: {} = {x}: |{}| > 1 is beyond the range of rolling contact (the wheel slips more than it rolls); computed anyway",
+                        v.name, v.name
+                    )),
+                    In::Fn if x < 0.0 => self.warn(format!(
+                        "{F}: FN = {x} N < 0: the wheel has lifted off; treated as FN = 0 (all forces zero)"
+                    )),
+                    _ => Status::Ok,
+                }
+            }
+            Slot::Param(p) => {
+                let mut scratch = creep_core::params::Params::default();
+                if let Err(e) = scratch.set(p, x) {
+                    return self.error(format!(
+                        "{F}: {} = {x} rejected (value unchanged): {e}",
+                        v.name
+                    ));
+                }
+                self.settings.params.insert(p, x);
+                self.settings_changed();
+                Status::Ok
+            }
+            Slot::Geo(g) => {
+                if !(x.is_finite() && x > 0.0) {
+                    let unit = v.unit.unwrap_or("");
+                    return self.error(format!(
+                        "{F}: {} = {x} rejected (value unchanged): must be finite and > 0 {unit}",
+                        v.name
+                    ));
+                }
+                self.settings.geo[geo_index(g)] = Some(x);
+                self.settings_changed();
+                Status::Ok
+            }
+            _ => self.error(format!("{F}: {} is not settable as Real", v.name)),
+        }
+    }
+
+    /// fmi2GetInteger of one variable.
+    pub fn get_integer(&mut self, vr: u32) -> Result<i32, Status> {
+        const F: &str = "fmi2GetInteger";
+        self.check_gettable(F)?;
+        let v = self.var(F, vr, Kind::Integer)?;
+        if v.slot == Slot::GeometryMode {
+            return Ok(self.settings.geometry);
+        }
+        match self.config() {
+            Ok(c) => Ok(if v.slot == Slot::Nx {
+                c.grid.nx
+            } else {
+                c.grid.ny
+            } as i32),
+            Err(e) => Err(self.error(format!("{F}: {}: configuration error: {e}", v.name))),
+        }
+    }
+
+    /// fmi2SetInteger of one variable.
+    pub fn set_integer(&mut self, vr: u32, x: i32) -> Status {
+        const F: &str = "fmi2SetInteger";
+        let v = match self.var(F, vr, Kind::Integer) {
+            Ok(v) => v,
+            Err(s) => return s,
+        };
+        if let Err(s) = self.check_settable(F, &v) {
+            return s;
+        }
+        let (lo, hi) = (v.min.unwrap_or(0.0) as i32, v.max.unwrap_or(1e9) as i32);
+        if x < lo || x > hi {
+            return self.error(format!(
+                "{F}: {} = {x} rejected (value unchanged): must be within [{lo}, {hi}] ({})",
+                v.name, v.description
+            ));
+        }
+        match v.slot {
+            Slot::GeometryMode => self.settings.geometry = x,
+            Slot::Nx => self.settings.nx = Some(x as usize),
+            Slot::Ny => self.settings.ny = Some(x as usize),
+            _ => return self.error(format!("{F}: {} is not settable as Integer", v.name)),
+        }
+        self.settings_changed();
+        Status::Ok
+    }
+
+    /// fmi2GetBoolean of one variable.
+    pub fn get_boolean(&mut self, vr: u32) -> Result<bool, Status> {
+        const F: &str = "fmi2GetBoolean";
+        self.check_gettable(F)?;
+        let v = self.var(F, vr, Kind::Boolean)?;
+        let Slot::Effect(e) = v.slot else {
+            return Err(self.error(format!("{F}: {} is not a Boolean", v.name)));
+        };
+        if let Some(on) = self.settings.effects.get(&e) {
+            return Ok(*on);
+        }
+        match self.config() {
+            Ok(c) => Ok(c.effects.has(e)),
+            Err(err) => Err(self.error(format!("{F}: {}: configuration error: {err}", v.name))),
+        }
+    }
+
+    /// fmi2SetBoolean of one variable.
+    pub fn set_boolean(&mut self, vr: u32, x: bool) -> Status {
+        const F: &str = "fmi2SetBoolean";
+        let v = match self.var(F, vr, Kind::Boolean) {
+            Ok(v) => v,
+            Err(s) => return s,
+        };
+        if let Err(s) = self.check_settable(F, &v) {
+            return s;
+        }
+        let Slot::Effect(e) = v.slot else {
+            return self.error(format!("{F}: {} is not settable as Boolean", v.name));
+        };
+        self.settings.effects.insert(e, x);
+        self.settings_changed();
+        Status::Ok
+    }
+
+    /// fmi2GetString of one variable.
+    pub fn get_string(&mut self, vr: u32) -> Result<String, Status> {
+        const F: &str = "fmi2GetString";
+        self.check_gettable(F)?;
+        let v = self.var(F, vr, Kind::String)?;
+        Ok(match v.slot {
+            Slot::Model => {
+                if self.settings.model_set {
+                    self.settings.model.clone()
+                } else {
+                    match self.config() {
+                        Ok(c) => c.model.name().to_string(),
+                        Err(_) => self.settings.model.clone(),
+                    }
+                }
+            }
+            Slot::Preset => self.settings.preset.clone(),
+            _ => self.settings.config_file.clone(),
+        })
+    }
+
+    /// fmi2SetString of one variable.
+    pub fn set_string(&mut self, vr: u32, x: &str) -> Status {
+        const F: &str = "fmi2SetString";
+        let v = match self.var(F, vr, Kind::String) {
+            Ok(v) => v,
+            Err(s) => return s,
+        };
+        if let Err(s) = self.check_settable(F, &v) {
+            return s;
+        }
+        match v.slot {
+            Slot::Model => {
+                if let Err(e) = ModelKind::parse(x) {
+                    return self.error(format!(
+                        "{F}: model = '{x}' rejected (value unchanged): {e}"
+                    ));
+                }
+                self.settings.model = x.to_string();
+                self.settings.model_set = true;
+            }
+            Slot::Preset => {
+                if !x.is_empty() {
+                    if let Err(e) = Config::preset(x) {
+                        return self.error(format!(
+                            "{F}: preset = '{x}' rejected (value unchanged): {e}"
+                        ));
+                    }
+                }
+                self.settings.preset = x.to_string();
+            }
+            Slot::ConfigFile => {
+                if !x.is_empty() {
+                    let res = self
+                        .config_path(x)
+                        .and_then(|p| Config::from_file(&p).map_err(|e| e.to_string()));
+                    if let Err(e) = res {
+                        return self.error(format!(
+                            "{F}: config_file = '{x}' rejected (value unchanged): {e}"
+                        ));
+                    }
+                }
+                self.settings.config_file = x.to_string();
+            }
+            _ => return self.error(format!("{F}: {} is not settable as String", v.name)),
+        }
+        self.settings_changed();
+        Status::Ok
+    }
+
+    /// fmi2GetRealStatus(fmi2LastSuccessfulTime).
+    pub fn last_successful_time(&self) -> f64 {
+        self.time
+    }
+
+    /// fmi2GetFMUstate: a copy of everything the instance holds.
+    pub fn get_state(&mut self) -> Snapshot {
+        let cfg = self
+            .model
+            .as_ref()
+            .map(|m| m.config().clone())
+            .or_else(|| self.cfg.clone());
+        Snapshot {
+            settings: self.settings.clone(),
+            inputs: self.inputs,
+            time: self.time,
+            cfg,
+            model: self.model.clone(),
+        }
+    }
+
+    /// fmi2SetFMUstate: restores a snapshot.
+    pub fn set_state(&mut self, s: &Snapshot) -> Status {
+        const F: &str = "fmi2SetFMUstate";
+        if s.model.is_none() && matches!(self.phase, Phase::StepComplete | Phase::Terminated) {
+            return self.error(format!(
+                "{F}: the state was taken before initialization and cannot be set in state {}",
+                self.phase.name()
+            ));
+        }
+        self.settings = s.settings.clone();
+        self.inputs = s.inputs;
+        self.time = s.time;
+        self.cfg = s.cfg.clone();
+        self.model = s.model.clone();
+        self.model_current = self.model.is_some();
+        self.restored = self.model.is_some();
+        if self.phase == Phase::Error {
+            self.phase = if self.model.is_some() {
+                Phase::StepComplete
+            } else {
+                Phase::Instantiated
+            };
+        }
+        self.event(format!("{F}: state at t = {} s restored", self.time));
+        Status::Ok
+    }
+}
+
+/// Geometry parameters in the order of `Settings::geo`.
+pub const GEOS: [Geo; 5] = [Geo::ARef, Geo::BRef, Geo::FnRef, Geo::Rx, Geo::Ry];
+
+/// Index of an effect in the catalogue (serialization).
+pub fn effect_index(e: Effect) -> u8 {
+    effects::CATALOGUE
+        .iter()
+        .position(|i| i.effect == e)
+        .unwrap_or(0) as u8
+}
+
+/// Effect of a catalogue index.
+pub fn effect_of(i: u8) -> Option<Effect> {
+    effects::CATALOGUE.get(i as usize).map(|i| i.effect)
+}
+
+/// Parameter of a registry index.
+pub fn param_of(i: u32) -> Option<P> {
+    params::SPECS.get(i as usize).map(|s| s.id)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn vr(name: &str) -> u32 {
+        vars::table()
+            .iter()
+            .find(|v| v.name == name)
+            .map(|v| v.vr)
+            .expect(name)
+    }
+
+    fn initialized() -> Instance {
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.set_integer(vr("nx"), 10), Status::Ok);
+        assert_eq!(i.set_integer(vr("ny"), 5), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        i
+    }
+
+    #[test]
+    fn uri_paths() {
+        assert_eq!(
+            uri_to_path("file:///tmp/a%20b/res/"),
+            Some(PathBuf::from("/tmp/a b/res/"))
+        );
+        assert_eq!(uri_to_path("file:/tmp/x"), Some(PathBuf::from("/tmp/x")));
+        assert_eq!(
+            uri_to_path("file://localhost/tmp/x"),
+            Some(PathBuf::from("/tmp/x"))
+        );
+        assert_eq!(uri_to_path("http://x/y"), None);
+        assert_eq!(uri_to_path("file:///tmp/%zz"), None);
+    }
+
+    #[test]
+    fn wrong_state_and_unknown_reference_are_errors_with_messages() {
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.do_step(0.0, 1e-3), Status::Error);
+        assert_eq!(i.set_real(9999, 1.0), Status::Error);
+        let logs = i.take_logs();
+        assert!(
+            logs[0].text.contains("fmi2DoStep") && logs[0].text.contains("Instantiated"),
+            "{logs:?}"
+        );
+        assert!(logs[1].text.contains("9999"), "{logs:?}");
+        let mut i = initialized();
+        assert_eq!(i.set_real(vr("mu"), 0.3), Status::Error);
+        let logs = i.take_logs();
+        assert!(
+            logs[0].text.contains("mu") && logs[0].text.contains("fixed parameter"),
+            "{logs:?}"
+        );
+    }
+
+    #[test]
+    fn nan_input_is_rejected_and_value_kept() {
+        let mut i = initialized();
+        assert_eq!(i.set_real(vr("cx"), 0.01), Status::Ok);
+        assert_eq!(i.set_real(vr("cx"), f64::NAN), Status::Error);
+        assert_eq!(i.get_real(vr("cx")), Ok(0.01));
+        let logs = i.take_logs();
+        assert!(
+            logs[0].text.contains("cx") && logs[0].text.contains("finite"),
+            "{logs:?}"
+        );
+        assert_eq!(i.set_real(vr("FN"), -1.0), Status::Warning);
+        assert_eq!(i.do_step(0.0, 1e-4), Status::Ok);
+        assert_eq!(i.get_real(vr("Fx")), Ok(0.0));
+    }
+
+    #[test]
+    fn preset_and_model_conflict_is_reported_at_initialization() {
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.set_string(vr("model"), "fastsim"), Status::Ok);
+        assert_eq!(i.set_string(vr("preset"), "dry"), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Error);
+        let logs = i.take_logs();
+        assert!(
+            logs[0].text.contains("fastsim") && logs[0].text.contains("dry"),
+            "{logs:?}"
+        );
+        assert_eq!(i.phase(), Phase::Initialization);
+    }
+
+    #[test]
+    fn parameters_read_back_from_the_preset_unless_set() {
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.set_string(vr("preset"), "dry"), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        let dry = Config::preset("dry").unwrap();
+        assert_eq!(i.get_real(vr("tau_c1_0_GPa")), Ok(dry.params.get(P::Tc10)));
+        assert_eq!(i.set_real(vr("tau_c1_0_GPa"), 0.4), Status::Ok);
+        assert_eq!(i.get_real(vr("tau_c1_0_GPa")), Ok(0.4));
+        assert_eq!(i.set_boolean(vr("effect_transient"), false), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        let c = i.model().unwrap().config();
+        assert_eq!(c.params.get(P::Tc10), 0.4);
+        assert!(!c.effects.has(Effect::Transient));
+        assert_eq!(c.params.get(P::Tc20), dry.params.get(P::Tc20));
+    }
+
+    #[test]
+    fn curvature_geometry_gives_hertz_semi_axes() {
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.set_integer(vr("geometry"), 2), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        let a = i.get_real(vr("a")).unwrap();
+        let b = i.get_real(vr("b")).unwrap();
+        let expect = creep_core::engine::patch_for(i.model().unwrap().config(), 110e3).unwrap();
+        assert!(matches!(
+            i.model().unwrap().config().geometry,
+            Geometry::Curvatures { .. }
+        ));
+        assert_eq!((a, b), (expect.a, expect.b));
+        assert!(
+            a > 1e-3 && a < 2e-2 && b > 1e-3 && b < 2e-2,
+            "a = {a}, b = {b}"
+        );
+    }
+}

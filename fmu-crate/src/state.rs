@@ -1,0 +1,347 @@
+//! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
+//!
+//! Layout (version 1): magic `ECFFMUST`, u32 version, f64 time, 6 × f64 inputs, settings
+//! (model, model_set, preset, config_file, set parameters as (u32 registry index, f64),
+//! set effects as (u8 catalogue index, u8), nx, ny as u32 (0 = not set), i32 geometry,
+//! 5 × (u8 present, f64)), u8 + configuration (u8 model, u32 effect bits, u32 count + f64
+//! per parameter, u8 bound, u32 nx, u32 ny, u8 geometry kind + 3 × f64), u8 + u32 length +
+//! the bytes of `creep_core::Model::save_state` (the whole bristle grid and heat histories).
+//! Strings are u32 length + UTF-8. Nothing follows the last field.
+
+use crate::instance::{effect_index, effect_of, param_of, Settings, Snapshot};
+use creep_core::effects::EffectSet;
+use creep_core::params::{self, Params};
+use creep_core::{Bound, Config, Geometry, Grid, Model, ModelKind};
+
+/// Magic bytes at the start of a serialized FMU state.
+pub const MAGIC: &[u8; 8] = b"ECFFMUST";
+/// Format version written by this build.
+pub const VERSION: u32 = 1;
+
+struct W(Vec<u8>);
+
+impl W {
+    fn u8(&mut self, x: u8) {
+        self.0.push(x);
+    }
+    fn u32(&mut self, x: u32) {
+        self.0.extend_from_slice(&x.to_le_bytes());
+    }
+    fn i32(&mut self, x: i32) {
+        self.0.extend_from_slice(&x.to_le_bytes());
+    }
+    fn f64(&mut self, x: f64) {
+        self.0.extend_from_slice(&x.to_le_bytes());
+    }
+    fn bytes(&mut self, b: &[u8]) {
+        self.u32(b.len() as u32);
+        self.0.extend_from_slice(b);
+    }
+    fn str(&mut self, s: &str) {
+        self.bytes(s.as_bytes());
+    }
+}
+
+struct R<'a> {
+    d: &'a [u8],
+    p: usize,
+}
+
+impl<'a> R<'a> {
+    fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
+        if self.d.len() - self.p < n {
+            return Err(format!(
+                "truncated at byte {} (need {n} more bytes, {} left)",
+                self.p,
+                self.d.len() - self.p
+            ));
+        }
+        let s = &self.d[self.p..self.p + n];
+        self.p += n;
+        Ok(s)
+    }
+    fn u8(&mut self) -> Result<u8, String> {
+        Ok(self.take(1)?[0])
+    }
+    fn u32(&mut self) -> Result<u32, String> {
+        let b = self.take(4)?;
+        Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    }
+    fn i32(&mut self) -> Result<i32, String> {
+        let b = self.take(4)?;
+        Ok(i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    }
+    fn f64(&mut self) -> Result<f64, String> {
+        let b = self.take(8)?;
+        let mut a = [0u8; 8];
+        a.copy_from_slice(b);
+        Ok(f64::from_le_bytes(a))
+    }
+    fn bytes(&mut self) -> Result<&'a [u8], String> {
+        let n = self.u32()? as usize;
+        self.take(n)
+    }
+    fn str(&mut self) -> Result<String, String> {
+        let b = self.bytes()?;
+        String::from_utf8(b.to_vec()).map_err(|_| "a string is not UTF-8".to_string())
+    }
+    fn bool(&mut self) -> Result<bool, String> {
+        match self.u8()? {
+            0 => Ok(false),
+            1 => Ok(true),
+            b => Err(format!("bad boolean byte {b} at {}", self.p - 1)),
+        }
+    }
+}
+
+fn put_config(w: &mut W, c: &Config) {
+    w.u8(match c.model {
+        ModelKind::Ecf => 0,
+        ModelKind::Fastsim => 1,
+        ModelKind::Polach => 2,
+    });
+    w.u32(c.effects.bits());
+    w.u32(params::SPECS.len() as u32);
+    for s in params::SPECS {
+        w.f64(c.params.get(s.id));
+    }
+    w.u8(match c.bound {
+        Bound::Elliptic => 0,
+        Bound::Parabolic => 1,
+    });
+    w.u32(c.grid.nx as u32);
+    w.u32(c.grid.ny as u32);
+    let (k, g) = match c.geometry {
+        Geometry::SemiAxes { a, b, fn_ref } => (0, [a, b, fn_ref]),
+        Geometry::Curvatures { rx, ry } => (1, [rx, ry, 0.0]),
+        Geometry::Line { r, width } => (2, [r, width, 0.0]),
+    };
+    w.u8(k);
+    for x in g {
+        w.f64(x);
+    }
+    w.str(&c.preset);
+}
+
+fn get_config(r: &mut R) -> Result<Config, String> {
+    let model = match r.u8()? {
+        0 => ModelKind::Ecf,
+        1 => ModelKind::Fastsim,
+        2 => ModelKind::Polach,
+        b => return Err(format!("bad model byte {b}")),
+    };
+    let bits = r.u32()?;
+    let effects = EffectSet::from_bits(bits);
+    if effects.bits() != bits {
+        return Err(format!("bad effect bits {bits:#x}"));
+    }
+    let n = r.u32()? as usize;
+    if n != params::SPECS.len() {
+        return Err(format!(
+            "{n} parameters, this build has {}",
+            params::SPECS.len()
+        ));
+    }
+    let mut p = Params::default();
+    for s in params::SPECS {
+        p.set(s.id, r.f64()?).map_err(|e| e.to_string())?;
+    }
+    let bound = match r.u8()? {
+        0 => Bound::Elliptic,
+        1 => Bound::Parabolic,
+        b => return Err(format!("bad bound byte {b}")),
+    };
+    let grid = Grid {
+        nx: r.u32()? as usize,
+        ny: r.u32()? as usize,
+    };
+    grid.validate().map_err(|e| e.to_string())?;
+    let k = r.u8()?;
+    let g = [r.f64()?, r.f64()?, r.f64()?];
+    let geometry = match k {
+        0 => Geometry::SemiAxes {
+            a: g[0],
+            b: g[1],
+            fn_ref: g[2],
+        },
+        1 => Geometry::Curvatures { rx: g[0], ry: g[1] },
+        2 => Geometry::Line {
+            r: g[0],
+            width: g[1],
+        },
+        b => return Err(format!("bad geometry byte {b}")),
+    };
+    let preset = r.str()?;
+    Ok(Config {
+        model,
+        preset,
+        effects,
+        params: p,
+        bound,
+        grid,
+        geometry,
+    })
+}
+
+/// Serializes a snapshot.
+pub fn serialize(s: &Snapshot) -> Vec<u8> {
+    let mut w = W(Vec::new());
+    w.0.extend_from_slice(MAGIC);
+    w.u32(VERSION);
+    w.f64(s.time);
+    for x in s.inputs {
+        w.f64(x);
+    }
+    let st = &s.settings;
+    w.str(&st.model);
+    w.u8(st.model_set as u8);
+    w.str(&st.preset);
+    w.str(&st.config_file);
+    w.u32(st.params.len() as u32);
+    for (p, x) in &st.params {
+        w.u32(*p as u32);
+        w.f64(*x);
+    }
+    w.u32(st.effects.len() as u32);
+    for (e, on) in &st.effects {
+        w.u8(effect_index(*e));
+        w.u8(*on as u8);
+    }
+    w.u32(st.nx.unwrap_or(0) as u32);
+    w.u32(st.ny.unwrap_or(0) as u32);
+    w.i32(st.geometry);
+    for g in st.geo {
+        w.u8(g.is_some() as u8);
+        w.f64(g.unwrap_or(0.0));
+    }
+    match &s.cfg {
+        Some(c) => {
+            w.u8(1);
+            put_config(&mut w, c);
+        }
+        None => w.u8(0),
+    }
+    match &s.model {
+        Some(m) => {
+            w.u8(1);
+            w.bytes(&m.save_state());
+        }
+        None => w.u8(0),
+    }
+    w.0
+}
+
+/// Reads a snapshot written by [`serialize`]; checks everything, including the core state.
+pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
+    let mut r = R { d: data, p: 0 };
+    if r.take(8).ok() != Some(&MAGIC[..]) {
+        return Err("not a serialized ecf_contact FMU state (bad magic)".into());
+    }
+    let v = r.u32()?;
+    if v != VERSION {
+        return Err(format!(
+            "serialized FMU state has format version {v}; this build reads version {VERSION}"
+        ));
+    }
+    let time = r.f64()?;
+    let mut inputs = [0.0; 6];
+    for x in inputs.iter_mut() {
+        *x = r.f64()?;
+    }
+    let mut st = Settings {
+        model: r.str()?,
+        model_set: r.bool()?,
+        preset: r.str()?,
+        config_file: r.str()?,
+        ..Settings::default()
+    };
+    let n = r.u32()?;
+    for _ in 0..n {
+        let i = r.u32()?;
+        let p = param_of(i).ok_or_else(|| format!("bad parameter index {i}"))?;
+        st.params.insert(p, r.f64()?);
+    }
+    let n = r.u32()?;
+    for _ in 0..n {
+        let i = r.u8()?;
+        let e = effect_of(i).ok_or_else(|| format!("bad effect index {i}"))?;
+        st.effects.insert(e, r.bool()?);
+    }
+    let nx = r.u32()? as usize;
+    let ny = r.u32()? as usize;
+    st.nx = (nx > 0).then_some(nx);
+    st.ny = (ny > 0).then_some(ny);
+    st.geometry = r.i32()?;
+    for g in st.geo.iter_mut() {
+        let present = r.bool()?;
+        let x = r.f64()?;
+        *g = present.then_some(x);
+    }
+    let cfg = if r.bool()? {
+        Some(get_config(&mut r)?)
+    } else {
+        None
+    };
+    let model = if r.bool()? {
+        let bytes = r.bytes()?;
+        let cfg = cfg
+            .as_ref()
+            .ok_or_else(|| "a model state without a configuration".to_string())?;
+        let mut m = Model::new(cfg).map_err(|e| e.to_string())?;
+        m.load_state(bytes).map_err(|e| e.to_string())?;
+        Some(m)
+    } else {
+        None
+    };
+    if r.p != data.len() {
+        return Err(format!("{} trailing bytes", data.len() - r.p));
+    }
+    Ok(Snapshot {
+        settings: st,
+        inputs,
+        time,
+        cfg,
+        model,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::instance::{Instance, Status};
+
+    #[test]
+    fn round_trip_continues_bit_for_bit_and_corruption_is_refused() {
+        let mut i = Instance::new("t", None, false);
+        let vr = |n: &str| {
+            crate::vars::table()
+                .iter()
+                .find(|v| v.name == n)
+                .unwrap()
+                .vr
+        };
+        assert_eq!(i.set_integer(vr("nx"), 12), Status::Ok);
+        assert_eq!(i.set_real(vr("mu"), 0.3), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        assert_eq!(i.set_real(vr("cx"), 0.02), Status::Ok);
+        assert_eq!(i.do_step(0.0, 1e-3), Status::Ok);
+        let bytes = serialize(&i.get_state());
+        let snap = deserialize(&bytes).unwrap();
+        assert_eq!(serialize(&snap), bytes);
+        assert_eq!(i.do_step(1e-3, 1e-3), Status::Ok);
+        let fx1 = i.get_real(vr("Fx")).unwrap();
+        assert_eq!(i.set_state(&snap), Status::Ok);
+        assert_eq!(i.do_step(1e-3, 1e-3), Status::Ok);
+        assert_eq!(i.get_real(vr("Fx")).unwrap().to_bits(), fx1.to_bits());
+        for cut in [0, 7, 12, bytes.len() / 2, bytes.len() - 1] {
+            assert!(deserialize(&bytes[..cut]).is_err(), "cut at {cut}");
+        }
+        let mut bad = bytes.clone();
+        bad[8] = 99;
+        assert!(deserialize(&bad).unwrap_err().contains("version 99"));
+        let mut longer = bytes.clone();
+        longer.push(0);
+        assert!(deserialize(&longer).unwrap_err().contains("trailing"));
+    }
+}
