@@ -766,8 +766,10 @@ impl Instance {
                 self.model_current = false;
                 match i {
                     In::Cx | In::Cy if x.abs() > 1.0 => self.warn(format!(
-                        "{F}: {} = {x}: |{}| > 1 is beyond the range of rolling contact (the wheel slips more than it rolls); computed anyway",
-                        v.name, v.name
+                        "{F}: {} = {x} ({:.0} %): |{}| > 1 is beyond the range of rolling contact (the wheel slips more than it rolls); computed anyway",
+                        v.name,
+                        100.0 * x,
+                        v.name
                     )),
                     In::Fn if x < 0.0 => self.warn(format!(
                         "{F}: FN = {x} N < 0: the wheel has lifted off; treated as FN = 0 (all forces zero)"
