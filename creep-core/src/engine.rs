@@ -271,6 +271,8 @@ pub struct Contact {
     out: Outputs,
     initialized: bool,
     warnings: Vec<String>,
+    /// Temperature tolerance of the local solve, K: 1e-4 / (largest temperature coefficient).
+    t_tol: f64,
 }
 
 impl Contact {
@@ -328,6 +330,15 @@ impl Contact {
             out: Outputs::default(),
             initialized: false,
             warnings: Vec::new(),
+            t_tol: {
+                let r = Resolved::from_config(cfg);
+                let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
+                if cmax > 0.0 {
+                    (1e-4 / cmax).min(0.1)
+                } else {
+                    0.1
+                }
+            },
         })
     }
 
@@ -460,13 +471,27 @@ impl Contact {
         } else {
             0.0
         };
+        // equal coefficients share one exponential (Tab. 4.1 has three equal ones)
+        let f1 = r.pf(p, r.tc1_p);
+        let f2 = if r.tc2_p == r.tc1_p {
+            f1
+        } else {
+            r.pf(p, r.tc2_p)
+        };
+        let fp = if r.lp_p == r.tc1_p {
+            f1
+        } else if r.lp_p == r.tc2_p {
+            f2
+        } else {
+            r.pf(p, r.lp_p)
+        };
         NodeP {
             p,
             bound,
-            tc1: r.tc10 * r.pf(p, r.tc1_p),
-            tc2: r.tc20 * r.pf(p, r.tc2_p),
+            tc1: r.tc10 * f1,
+            tc2: r.tc20 * f2,
             le,
-            lp: r.lp0 / r.pf(p, r.lp_p),
+            lp: r.lp0 / fp,
         }
     }
 
@@ -501,12 +526,21 @@ impl Contact {
             };
         }
         let (tf1, tf2, tfp, tfe) = if r.temperature {
-            (
-                r.tf(t, r.tc1_t),
-                r.tf(t, r.tc2_t),
-                r.tf(t, r.lp_t),
-                r.tf(t, r.le_t),
-            )
+            // equal coefficients share one exponential (Tab. 4.1 has three equal ones)
+            let tf1 = r.tf(t, r.tc1_t);
+            let tf2 = if r.tc2_t == r.tc1_t {
+                tf1
+            } else {
+                r.tf(t, r.tc2_t)
+            };
+            let tfp = if r.lp_t == r.tc1_t {
+                tf1
+            } else if r.lp_t == r.tc2_t {
+                tf2
+            } else {
+                r.tf(t, r.lp_t)
+            };
+            (tf1, tf2, tfp, r.tf(t, r.le_t))
         } else {
             (1.0, 1.0, 1.0, 1.0)
         };
@@ -534,7 +568,9 @@ impl Contact {
         let d = k.dist;
         let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
         // Temperature from the heat history (all but the newest interval), Eq. 4.35.
-        let t_hist = if self.r.temperature && k.heat {
+        // acc[0] integrates all heat ever received (rate 0): zero means a cold history
+        let warm = acc[0] != 0.0;
+        let t_hist = if self.r.temperature && k.heat && warm {
             let mut sum = 0.0;
             for ((w, d), a) in self.kernel.weights.iter().zip(fac.0.iter()).zip(acc.iter()) {
                 sum += w * d * a;
@@ -575,18 +611,41 @@ impl Contact {
             // the bristle reaches first while heating up; q(T) may rise with T where softening
             // turns an elastic bristle plastic): fixed-point steps upward while
             // g(T) = t_hist + self_c q(T) - T > 0, then Illinois regula falsi once bracketed;
-            // tolerance 0.01 K.
+            // tolerance `t_tol`: 1e-4 relative change of the softening factors.
             let g_of = |q: f64, t: f64| t_hist + self_c * q - t;
+            let tol = self.t_tol;
             let (mut ta, mut ga) = (t_hist, self_c * q);
+            // predictor: this bristle's heat of its previous sub-step, when it lies inside
+            // [t_hist, t_hist + self_c q(t_hist)]; else the fixed-point step from t_hist
             let mut tb = ta + ga;
+            if old.q > 0.0 && self_c * old.q < ga {
+                let tp = t_hist + self_c * old.q;
+                let (sp, qp) = eval(tp);
+                let gp = g_of(qp, tp);
+                if gp.abs() < tol {
+                    ns = sp;
+                    q = qp;
+                    tb = tp;
+                    ta = tp;
+                } else if gp > 0.0 {
+                    ta = tp;
+                    ga = gp;
+                    tb = tp + gp;
+                } else {
+                    tb = tp;
+                }
+            }
             let mut bracketed = false;
             let mut gb = 0.0;
             for _ in 0..60 {
+                if tb == ta {
+                    break;
+                }
                 let (sb, qb) = eval(tb);
                 ns = sb;
                 q = qb;
                 gb = g_of(qb, tb);
-                if gb.abs() < 0.01 {
+                if gb.abs() < tol {
                     break;
                 }
                 if gb > 0.0 {
@@ -606,7 +665,7 @@ impl Contact {
                     let gc = g_of(qc, tc);
                     ns = sc;
                     q = qc;
-                    if gc.abs() < 0.01 || (tb - ta).abs() < 1e-6 {
+                    if gc.abs() < tol || (tb - ta).abs() < 1e-6 {
                         break;
                     }
                     if gc < 0.0 {
@@ -634,7 +693,7 @@ impl Contact {
         };
         ns.q = q;
         *s = ns;
-        if self.r.temperature && k.heat {
+        if self.r.temperature && k.heat && (warm || q > 0.0) {
             let qw = q; // alpha is folded into alpha_c
             for ((a, d), g) in acc.iter_mut().zip(fac.0.iter()).zip(fac.1.iter()) {
                 *a = d * *a + qw * g;
