@@ -977,3 +977,57 @@ check_signatures!(
     fmi2GetBooleanStatus: fmi2GetBooleanStatusTYPE,
     fmi2GetStringStatus: fmi2GetStringStatusTYPE,
 );
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Mutex;
+
+    static SEEN: Mutex<Vec<String>> = Mutex::new(Vec::new());
+    struct Cap;
+    impl log::Log for Cap {
+        fn enabled(&self, _: &log::Metadata) -> bool {
+            true
+        }
+        fn log(&self, r: &log::Record) {
+            if let Ok(mut v) = SEEN.lock() {
+                v.push(format!("{}: {}", r.target(), r.args()));
+            }
+        }
+        fn flush(&self) {}
+    }
+    static CAP: Cap = Cap;
+
+    #[test]
+    fn a_panic_inside_a_call_becomes_fmi2error_with_a_message() {
+        let _ = log::set_logger(&CAP);
+        log::set_max_level(log::LevelFilter::Trace);
+        let comp = Box::new(Component {
+            inst: Instance::new("panicky", None, false),
+            logger: Some(fmi_sys::fmi2::logger::callback_logger_handler),
+            env: std::ptr::null_mut(),
+            name: CString::new("panicky").unwrap_or_default(),
+            strings: Vec::new(),
+        });
+        let c = Box::into_raw(comp) as f::fmi2Component;
+        let st = unsafe { with(c, "fmi2DoStep", |_| panic!("boom 100%")) };
+        assert_eq!(st, ERROR);
+        let seen = SEEN.lock().map(|v| v.clone()).unwrap_or_default();
+        assert!(
+            seen.iter()
+                .any(|m| m.starts_with("panicky: fmi2DoStep: internal error (panic: boom 100%)")),
+            "{seen:?}"
+        );
+        // the instance is in the error state; reset brings it back
+        assert_eq!(unsafe { fmi2DoStep(c, 0.0, 1e-3, 1) }, ERROR);
+        assert_eq!(unsafe { fmi2Reset(c) }, OK);
+        assert_eq!(unsafe { fmi2EnterInitializationMode(c) }, OK);
+        unsafe { fmi2FreeInstance(c) };
+    }
+
+    #[test]
+    fn percent_signs_are_escaped() {
+        assert_eq!(escape_percent("a %s 5 %").to_str().ok(), Some("a %%s 5 %%"));
+        assert_eq!(escape_percent("nul\0byte").to_str().ok(), Some("nul byte"));
+    }
+}

@@ -305,7 +305,7 @@ fn configuration_files_missing_malformed_conflicting_and_good() {
     )
     .unwrap();
     let uri = format!("file://{}/", res.display());
-    let mut f = Fmu::with_resources("config", Some(&uri));
+    let f = Fmu::with_resources("config", Some(&uri));
     assert_eq!(f.set_string("config_file", "missing.json"), ERROR);
     assert!(
         has(
