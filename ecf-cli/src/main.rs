@@ -94,7 +94,7 @@ struct ModelArgs {
     #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
     v_mps: f64,
     /// Normal force, kN (> 0)
-    #[arg(long, default_value_t = 110.0, allow_negative_numbers = true)]
+    #[arg(long = "fn-kN", visible_alias = "fn-kn", default_value_t = 110.0, allow_negative_numbers = true)]
     fn_kn: f64,
     /// Semi-axis in rolling direction at this load, mm (with --b-mm)
     #[arg(long)]
