@@ -3,8 +3,14 @@ use creep_core::{config::DEFAULT_GRID, Config, Grid, Inputs, Model};
 
 fn main() {
     let g = DEFAULT_GRID;
-    let fine = Grid { nx: 4 * g.nx, ny: 4 * g.ny };
-    println!("| preset | v (m/s) | c_x | f default {}x{} | f refined {}x{} | difference |", g.nx, g.ny, fine.nx, fine.ny);
+    let fine = Grid {
+        nx: 4 * g.nx,
+        ny: 4 * g.ny,
+    };
+    println!(
+        "| preset | v (m/s) | c_x | f default {}x{} | f refined {}x{} | difference |",
+        g.nx, g.ny, fine.nx, fine.ny
+    );
     println!("|---|---|---|---|---|---|");
     for name in ["table4.1", "dry", "wet", "fastsim"] {
         for v in [5.0, 20.0] {
@@ -12,10 +18,22 @@ fn main() {
                 let f = |grid: Grid| {
                     let mut c = Config::preset(name).expect("preset");
                     c.grid = grid;
-                    Model::new(&c).expect("model").steady(&Inputs { cx, v, fn_n: 110e3, ..Inputs::default() }).expect("steady").f
+                    Model::new(&c)
+                        .expect("model")
+                        .steady(&Inputs {
+                            cx,
+                            v,
+                            fn_n: 110e3,
+                            ..Inputs::default()
+                        })
+                        .expect("steady")
+                        .f
                 };
                 let (a, b) = (f(g), f(fine));
-                println!("| {name} | {v} | {cx} | {a:.4} | {b:.4} | {:+.2} % |", 100.0 * (a - b) / b);
+                println!(
+                    "| {name} | {v} | {cx} | {a:.4} | {b:.4} | {:+.2} % |",
+                    100.0 * (a - b) / b
+                );
             }
         }
     }

@@ -723,6 +723,9 @@ impl Contact {
             ([1.0; N_KERNEL], [h; N_KERNEL])
         };
         let inside = if phase_end > 0.0 { nx } else { nx + 1 };
+        // update in place (the state vectors are moved out so `self` stays borrowable)
+        let mut st = std::mem::take(&mut self.st);
+        let mut accs = std::mem::take(&mut self.acc);
         for slot in 0..inside {
             let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
             // material at the end of the sub-step (Eq. 4.5), but never closer to the trailing
@@ -730,12 +733,10 @@ impl Contact {
             let x_mid = a * (xi + 0.5 * dist / a);
             let np = self.node_p(xi.max(-self.ell[j] + 0.5 * dxi), eta);
             let id = self.idx(j, slot);
-            let mut s = self.st[id];
-            let mut acc = self.acc[id];
-            self.update_bristle(&kin, &np, [x_mid, y], &mut s, &mut acc, &fac);
-            self.st[id] = s;
-            self.acc[id] = acc;
+            self.update_bristle(&kin, &np, [x_mid, y], &mut st[id], &mut accs[id], &fac);
         }
+        self.st = st;
+        self.acc = accs;
     }
 
     /// A new bristle enters strip `j`: the oldest slot is recycled at the leading edge.
