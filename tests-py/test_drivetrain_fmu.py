@@ -21,8 +21,8 @@ from drivetrain_demo import params, scenarios  # noqa: E402
 
 GRID = (16, 9)
 H = 2.5e-4
-T_STEP = 1.5  # s: growth from the step to the limit cycle takes ~0.8 s at 5 m/s
-T_STEP_10 = 2.5  # s: at 10 m/s the growth rate is ~1/3 of that at 5 m/s
+T_STEP = 2.5  # s: at 5 m/s the limit cycle is reached ~1.7 s after the step
+T_STEP_10 = 3.5  # s: at 10 m/s the growth rate is ~1/6 of that at 5 m/s; limit cycle after ~2.5 s
 
 
 @pytest.fixture(scope="session")
@@ -97,8 +97,9 @@ def test_stiffness_change_moves_frequency_as_predicted(contact_fmu):
 
 def test_amplitude_lower_at_10_than_at_5_mps(contact_fmu):
     """Seed Sec. 3.1.2: the oscillation amplitude falls with vehicle speed (limit cycles compared)."""
-    a, _ = run(contact_fmu, t_end=T_STEP_10)
+    a, _ = run(contact_fmu)
     b, _ = run(contact_fmu, v=10.0, t_end=T_STEP_10)
+    assert a["pp_last_0.25s"] == pytest.approx(a["pp_prev_0.25s"], rel=0.15)  # 5 m/s has settled
     assert b["oscillation_amplitude"] < a["oscillation_amplitude"], (a["oscillation_amplitude"],
                                                                      b["oscillation_amplitude"])
     assert b["pp_last_0.25s"] == pytest.approx(b["pp_prev_0.25s"], rel=0.15)  # 10 m/s has settled too
@@ -110,10 +111,17 @@ def test_communication_step_halved_frequency_within_1_percent(contact_fmu):
     assert b["dominant_frequency_hz"] == pytest.approx(a["dominant_frequency_hz"], rel=0.01)
 
 
+def test_frequency_insensitive_to_bristle_grid(contact_fmu):
+    """The CI grid 16x9 against 10x5 (and, in docs/drivetrain.md, up to 40x21): frequency within 1 %."""
+    a, _ = run(contact_fmu)
+    b, _ = run(contact_fmu, grid=(10, 5))
+    assert b["dominant_frequency_hz"] == pytest.approx(a["dominant_frequency_hz"], rel=0.01)
+
+
 def test_sine_hysteresis_encircles_steady_curve(contact_fmu):
     """Fig. 6.6: with transient ECF the f(c_x) loop has an area; quasi-steady ECF retraces the curve."""
     tr, _ = run(contact_fmu, scenario="sine", t_end=10 / 53.0)
     qs, _ = run(contact_fmu, scenario="sine", t_end=10 / 53.0, transient=False, key="sine-qs")
     assert abs(tr["hysteresis_loop_area"]) > 10 * abs(qs["hysteresis_loop_area"])
     assert qs["cv_rmse_vs_steady_percent"] < 1.0
-    assert tr["cv_rmse_vs_steady_percent"] > 2.0
+    assert tr["cv_rmse_vs_steady_percent"] > 10 * qs["cv_rmse_vs_steady_percent"]

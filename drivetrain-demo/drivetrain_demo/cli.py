@@ -51,9 +51,10 @@ def build_parser():
         prog="python -m drivetrain_demo",
         description="Drive-train oscillations of a locomotive wheelset with the ECF contact FMU (seed Sec. 3.1.2, 6.2).",
         epilog="Units: creepages dimensionless (0.15 = 15 %), speeds m/s, times s unless the option says ms.")
-    ap.add_argument("scenario", choices=("step", "ramp", "sine", "modal"),
+    ap.add_argument("scenario", choices=("step", "ramp", "sine", "modal", "bench"),
                     help="step: c_des 0 -> 15 %% (Fig. 6.4); ramp: 0 -> 50 %% -> 0 in 8 s (Fig. 6.5); "
-                         "sine: prescribed c_x on one contact (Fig. 6.6); modal: modal and linear stability analysis")
+                         "sine: prescribed c_x on one contact (Fig. 6.6); modal: modal and linear stability analysis; "
+                         "bench: where the time goes (Python loop, FMU calls, physics)")
     ap.add_argument("--model", default="ecf", choices=MODELS + ("both",),
                     help="contact model (FMU parameter `model`); both = ecf and fastsim side by side [default: ecf]")
     ap.add_argument("--v-mps", type=_positive("--v-mps"), default=5.0, help="vehicle speed, m/s [default: 5]")
@@ -62,7 +63,7 @@ def build_parser():
     ap.add_argument("--h-ms", type=_positive("--h-ms"), default=0.25,
                     help="communication step = integrator step, ms (converged range 0.125-0.5) [default: 0.25]")
     ap.add_argument("--t-end", type=_positive("--t-end"), default=None,
-                    help="simulated time, s [default: step 1.5, ramp 8, sine 10 periods]")
+                    help="simulated time, s [default: step 2.5, ramp 8, sine 10 periods]")
     ap.add_argument("--grid", type=_grid, default=None,
                     help="bristle grid NXxNY of the contact FMU (e.g. 16x9) [default: 16x9]")
     ap.add_argument("--fmu-default-grid", action="store_true", help="use the FMU's own default grid instead of 16x9")
@@ -114,6 +115,15 @@ def main(argv=None):
     models = ("ecf", "fastsim") if a.model == "both" else (a.model,)
     if a.scenario == "modal":
         return modal(a, p, models, grid)
+    if a.scenario == "bench":
+        from . import bench, contact
+        path = contact.find_fmu(a.fmu)
+        if path is None:
+            raise SystemExit("error: bench needs the contact FMU (scripts/build-fmu.sh or --fmu)")
+        b = bench.run_bench(p, path, grid=grid or (80, 21), h=a.h_ms * 1e-3, v=a.v_mps,
+                            model=models[0])
+        print(json.dumps(b, indent=2) if a.json else bench.format_bench(b))
+        return 0
     summaries, runs = {}, []
     for m in models:
         cfg = scenarios.RunConfig(

@@ -105,7 +105,10 @@ class FMUContact:
         self.F_N, self.v = F_N, v
         self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=unzipdir,
                              modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
-        self.fmu.instantiate()
+        self.name = name
+        self.log_counts = {}
+        self._callbacks = self._make_callbacks()
+        self.fmu.instantiate(callbacks=self._callbacks)
         self.fmu.setupExperiment(startTime=start_time)
         self._set_parameters(model, preset, grid, transient, params or {})
         self.fmu.enterInitializationMode()
@@ -122,6 +125,33 @@ class FMUContact:
         self._vr_out = (ctypes.c_uint * len(out_names))(*[self.vr(n) for n in out_names])
         self._val_out = (ctypes.c_double * len(out_names))()
         self.f = 0.0
+
+    MAX_LOG_LINES = 3
+
+    def _make_callbacks(self):
+        """FMU logger that prints the first MAX_LOG_LINES messages per status and counts the rest."""
+        from fmpy.fmi2 import (fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                               fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+        from fmpy import calloc, free
+
+        status_names = {0: "OK", 1: "WARNING", 2: "DISCARD", 3: "ERROR", 4: "FATAL", 5: "PENDING"}
+
+        def logger(env, instance, status, category, message):
+            key = status_names.get(status, str(status))
+            n = self.log_counts.get(key, 0) + 1
+            self.log_counts[key] = n
+            if n <= self.MAX_LOG_LINES:
+                msg = message.decode("utf-8", "replace") if message else ""
+                print(f"[{self.name} {key}] {msg}", file=sys.stderr, flush=True)
+            elif n == self.MAX_LOG_LINES + 1:
+                print(f"[{self.name} {key}] further messages counted, not printed", file=sys.stderr, flush=True)
+
+        cb = fmi2CallbackFunctions()
+        cb.logger = fmi2CallbackLoggerTYPE(logger)
+        cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        self._logger_ref = cb.logger
+        return cb
 
     def vr(self, name):
         try:
@@ -181,6 +211,9 @@ class FMUContact:
             self.fmu.terminate()
         finally:
             self.fmu.freeInstance()
+        extra = {k: n - self.MAX_LOG_LINES for k, n in self.log_counts.items() if n > self.MAX_LOG_LINES}
+        if extra:
+            print(f"[{self.name}] FMU messages not printed: {extra}", file=sys.stderr, flush=True)
 
 
 def grid_variable_names(vars_):

@@ -53,7 +53,7 @@ def _fc(ax, res, curve, t_from=None):
     ax.plot(100 * curve[0], curve[1], "k", lw=1.2, label="steady characteristic")
     ax.set_xlabel("$c_{x,L}$ / %")
     ax.set_ylabel("$f_L$")
-    ax.set_xlim(0, max(60, 100 * np.nanmax(res["cx_L"][m]) + 2))
+    ax.set_xlim(min(0.0, 100 * np.nanmin(res["cx_L"][m]) - 1), max(60, 100 * np.nanmax(res["cx_L"][m]) + 2))
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
 

@@ -25,7 +25,7 @@ RAMP_PEAK = 0.50
 RAMP_DURATION = 8.0
 STEP_TARGET = 0.15
 SINE = {"cm": 0.12, "ca": 0.10, "f0": 53.0}
-DEFAULT_T_END = {"step": 1.5, "ramp": RAMP_DURATION, "sine": 10 / 53.0}
+DEFAULT_T_END = {"step": 2.5, "ramp": RAMP_DURATION, "sine": 10 / 53.0}
 
 
 @dataclass
@@ -190,7 +190,9 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
                                 "frequency_hz": s["predicted_frequency_hz"],
                                 "damping_ratio": s["predicted_damping_ratio"]} for s in scans],
         }
-    f_dom, (freqs, spec) = analysis.dominant_frequency(t, res["cx_L"], *settled)
+    # spectrum: for the ramp the slow trend is removed by a 0.1 s moving average first
+    sig = res["cx_L"] if cfg.scenario == "step" else analysis.oscillation_part(t, res["cx_L"], 0.1)
+    f_dom, (freqs, spec) = analysis.dominant_frequency(t, sig, *settled, fmin=10.0)
     amp = analysis.peak_to_peak(t, res["cx_L"], t_end - 0.5, t_end)
     period = 1.0 / (f_dom if np.isfinite(f_dom) and f_dom > 0 else lin["predicted_frequency_hz"])
     env_t, env = analysis.envelope(t, res["cx_L"], period, win=0.1)
