@@ -31,10 +31,14 @@ print()
 print("Drive-train step 0 -> 15 % at v = 5 m/s (seed Fig. 6.4)")
 for m in ("ecf", "fastsim"):
     r = s[m]
-    print(f"  {m.upper():8s} dominant frequency {r['dominant_frequency_hz']:6.2f} Hz, "
-          f"oscillation p-p (last 0.5 s) {100 * r['oscillation_amplitude']:6.3f} %, "
-          f"linear analysis: {r['predicted_frequency_hz']:.2f} Hz, "
-          f"{'unstable' if r['predicted_unstable'] else 'stable'}; real-time factor {r['real_time_factor']:.2f}")
+    if r["sustained_oscillation"]:
+        osc = f"sustained oscillation, dominant frequency {r['dominant_frequency_hz']:6.2f} Hz"
+    else:
+        osc = f"no sustained oscillation (the step response at {r['transient_frequency_hz']:.2f} Hz decays)"
+    print(f"  {m.upper():8s} {osc}, p-p of c_x,L over the last 0.5 s {100 * r['oscillation_amplitude']:.3f} %")
+    print(f"  {'':8s} linear analysis at 15 %: {r['predicted_frequency_hz']:.2f} Hz, "
+          f"{'UNSTABLE' if r['predicted_unstable'] else 'stable'} (zeta = {r['predicted_damping_ratio']:+.4f}); "
+          f"real-time factor {r['real_time_factor']:.2f}")
 print("Plots:")
 for p in sorted(out.glob("step_*.png")):
     print(f"  {p}")

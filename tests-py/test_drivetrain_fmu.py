@@ -70,7 +70,13 @@ def test_step_fastsim_oscillation_decays(contact_fmu):
     e, _ = run(contact_fmu)
     assert s["oscillation_amplitude"] < 0.05 * e["oscillation_amplitude"], (s["oscillation_amplitude"],
                                                                              e["oscillation_amplitude"])
-    assert s["pp_last_0.25s"] < s["pp_prev_0.25s"], (s["pp_last_0.25s"], s["pp_prev_0.25s"])
+    # the step excites the ~54 Hz mode and its amplitude decays by orders of magnitude
+    # (ECF: it grows); what is left in c_x,L is broadband numerical noise of ~1e-5
+    assert s["mode_amplitude_late"] < 1e-2 * s["mode_amplitude_early"], (s["mode_amplitude_early"],
+                                                                         s["mode_amplitude_late"])
+    assert e["mode_amplitude_late"] > 100 * e["mode_amplitude_early"]
+    assert s["sustained_oscillation"] is False and e["sustained_oscillation"] is True
+    assert s["transient_frequency_hz"] == pytest.approx(s["predicted_frequency_hz"], rel=0.05)
     assert abs(s["mean_cx_L_last_0.5s"] - 0.15) < 0.005  # the controller holds 15 %
 
 

@@ -93,3 +93,13 @@ def loop_area(c, f):
     c = np.append(c, c[0])
     f = np.append(f, f[0])
     return float(0.5 * np.sum(c[:-1] * f[1:] - c[1:] * f[:-1]))
+
+
+def tone_amplitude(t, y, f, t0, t1):
+    """Amplitude of the component of y at frequency f over [t0, t1] (Hann-windowed DFT, trend removed)."""
+    tw, yw = _window(t, y, t0, t1)
+    if len(yw) < 16 or not np.isfinite(f):
+        return float("nan")
+    x = _detrend(tw, yw)
+    w = np.hanning(len(x))
+    return float(2 * abs(np.sum(x * w * np.exp(-2j * np.pi * f * (tw - tw[0])))) / w.sum())

@@ -25,6 +25,7 @@ RAMP_PEAK = 0.50
 RAMP_DURATION = 8.0
 STEP_TARGET = 0.15
 SINE = {"cm": 0.12, "ca": 0.10, "f0": 53.0}
+OSC_THRESHOLD = 1e-3  # p-p creepage above which an oscillation counts as sustained
 DEFAULT_T_END = {"step": 2.5, "ramp": RAMP_DURATION, "sine": 10 / 53.0}
 
 
@@ -194,8 +195,16 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
     sig = res["cx_L"] if cfg.scenario == "step" else analysis.oscillation_part(t, res["cx_L"], 0.1)
     f_dom, (freqs, spec) = analysis.dominant_frequency(t, sig, *settled, fmin=10.0)
     amp = analysis.peak_to_peak(t, res["cx_L"], t_end - 0.5, t_end)
+    # frequency of the transient right after the step / start (meaningful also when it decays)
+    f_tr, _ = analysis.dominant_frequency(t, sig, 0.2, min(t_end, 1.0), fmin=10.0)
     period = 1.0 / (f_dom if np.isfinite(f_dom) and f_dom > 0 else lin["predicted_frequency_hz"])
     env_t, env = analysis.envelope(t, res["cx_L"], period, win=0.1)
+    osc = analysis.oscillation_part(t, res["cx_L"], period)
+
+    def osc_pp(a, b):
+        m = (t >= a) & (t <= b) & np.isfinite(osc)
+        return float(np.max(osc[m]) - np.min(osc[m])) if m.sum() > 3 else float("nan")
+
     osc_thr = 0.01
     osc_windows = env_t[env > osc_thr]
     summary = {
@@ -213,8 +222,19 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
         "dominant_frequency_hz": f_dom,
         "oscillation_amplitude": amp,
         "oscillation_amplitude_note": "peak-to-peak of c_x,L (dimensionless, linear trend removed) over the last 0.5 s",
+        "sustained_oscillation": bool(amp > OSC_THRESHOLD),
+        "sustained_oscillation_note": f"oscillation_amplitude > {OSC_THRESHOLD} (0.1 % creepage); otherwise "
+                                      "dominant_frequency_hz is that of numerical noise",
+        "transient_frequency_hz": f_tr,
+        "transient_frequency_note": "dominant frequency of c_x,L over 0.2-1.0 s (the response to the step, also when it decays)",
         "pp_last_0.25s": analysis.peak_to_peak(t, res["cx_L"], t_end - 0.25, t_end),
         "pp_prev_0.25s": analysis.peak_to_peak(t, res["cx_L"], t_end - 0.5, t_end - 0.25),
+        "osc_pp_early": osc_pp(0.5, min(1.0, t_end)),
+        "osc_pp_late": osc_pp(t_end - 0.5, t_end),
+        "osc_pp_note": "p-p of c_x,L minus its moving average over one period, 0.5-1.0 s and last 0.5 s",
+        "mode_amplitude_early": analysis.tone_amplitude(t, sig, lin["predicted_frequency_hz"], 0.2, min(0.7, t_end)),
+        "mode_amplitude_late": analysis.tone_amplitude(t, sig, lin["predicted_frequency_hz"], t_end - 0.5, t_end),
+        "mode_amplitude_note": "amplitude of c_x,L at the predicted frequency (windowed DFT), 0.2-0.7 s and last 0.5 s",
         "max_envelope_pp": float(env.max()) if len(env) else float("nan"),
         "oscillating_time_s": [float(osc_windows.min()), float(osc_windows.max())] if len(osc_windows) else None,
         "mean_cx_L_last_0.5s": float(np.nanmean(res["cx_L"][t >= t_end - 0.5])),
