@@ -6,8 +6,6 @@ Every check compares simulation output with a physical expectation or with the l
 analysis; nothing here is a stored result.
 """
 
-import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -26,22 +24,9 @@ T_STEP_10 = 3.5  # s: at 10 m/s the growth rate is ~1/6 of that at 5 m/s; limit 
 
 
 @pytest.fixture(scope="session")
-def contact_fmu():
-    """Path of the contact FMU: $ECF_CONTACT_FMU, dist/ecf_contact.fmu, or built by scripts/build-fmu.sh."""
-    for cand in (os.environ.get("ECF_CONTACT_FMU"), ROOT / "dist" / "ecf_contact.fmu"):
-        if cand and Path(cand).is_file():
-            return Path(cand)
-    script = ROOT / "scripts" / "build-fmu.sh"
-    if not script.is_file():
-        pytest.fail("contact FMU not found and scripts/build-fmu.sh missing")
-    r = subprocess.run(["bash", str(script)], cwd=ROOT, capture_output=True, text=True)
-    if r.returncode != 0:
-        pytest.fail(f"scripts/build-fmu.sh failed:\n{r.stderr[-3000:]}")
-    path = Path(r.stdout.strip().splitlines()[-1])
-    if not path.is_absolute():
-        path = ROOT / path
-    assert path.is_file(), path
-    return path
+def contact_fmu(fmu_path):
+    """The packed contact FMU from the shared conftest fixture (built once per session, or $ECF_FMU_PATH)."""
+    return Path(fmu_path)
 
 
 _cache = {}

@@ -70,7 +70,7 @@ def build_parser():
     ap.add_argument("--contact", choices=("auto", "fmu", "curve"), default="auto",
                     help="fmu: contact FMU; curve: steady-curve stand-in from `ecf curve` (no contact dynamics); "
                          "auto: FMU if found [default: auto]")
-    ap.add_argument("--fmu", default=None, help="path of the contact FMU [default: $ECF_CONTACT_FMU or dist/ecf_contact.fmu]")
+    ap.add_argument("--fmu", default=None, help="path of the contact FMU [default: $ECF_FMU_PATH, $ECF_CONTACT_FMU or dist/ecf_contact.fmu]")
     ap.add_argument("--no-transient", action="store_true", help="quasi-steady contact (FMU parameter transient = false)")
     ap.add_argument("--serial", action="store_true", help="step the two contacts one after the other (no threads)")
     ap.add_argument("--preset", default=None, help="contact preset (FMU parameter `preset`)")

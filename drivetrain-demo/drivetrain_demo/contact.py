@@ -31,8 +31,8 @@ EXTRA_OUTPUTS = ("T_max", "T_mean", "P_fric", "frac_elastic", "frac_plastic", "f
 
 
 def find_fmu(path: str | None = None) -> Path | None:
-    """The contact FMU: explicit path, $ECF_CONTACT_FMU, or dist/ecf_contact.fmu."""
-    for cand in (path, os.environ.get("ECF_CONTACT_FMU"), FMU_DEFAULT):
+    """The contact FMU: explicit path, $ECF_FMU_PATH, $ECF_CONTACT_FMU, or dist/ecf_contact.fmu."""
+    for cand in (path, os.environ.get("ECF_FMU_PATH"), os.environ.get("ECF_CONTACT_FMU"), FMU_DEFAULT):
         if cand and Path(cand).is_file():
             return Path(cand)
     if path:

@@ -65,8 +65,10 @@ def plot_run(path: Path, s: dict, results: dict) -> Path:
     _timeseries(axs[0, 0], res)
     axs[0, 0].legend(fontsize=7)
     axs[0, 0].set_title("creepages (seed Fig. 6.4/6.5)", fontsize=9)
-    _timeseries(axs[0, 1], res, zoom=(t_end - 0.1, t_end))
-    axs[0, 1].set_title("last 0.1 s", fontsize=9)
+    z = s.get("zoom_window_s") or [t_end - 0.1, t_end]
+    _timeseries(axs[0, 1], res, zoom=tuple(z))
+    axs[0, 1].set_title(f"zoom {z[0]:.2f}-{z[1]:.2f} s" + (" (largest oscillation)" if s["scenario"] == "ramp" else ""),
+                        fontsize=9)
     _spectrum(axs[1, 0], s, results["spectrum"])
     _fc(axs[1, 1], res, results["curve"], t_from=s["settled_window_s"][0])
     axs[1, 1].set_title("traction over creepage, settled window (seed Fig. 6.6)", fontsize=9)

@@ -160,7 +160,7 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
         f"transient {cfg.transient}, h = {cfg.h * 1e3:g} ms, t_end = {t_end:g} s")
     t0 = time.perf_counter()
     curve = SteadyCurve(cfg, p, kind, path)
-    c_grid = np.linspace(0.0, 0.6, 121)
+    c_grid = np.linspace(0.0, 0.6 if cfg.scenario == "step" else 1.0, 121)
     f_grid = curve(c_grid)
     t_curve = time.perf_counter() - t0
     cL, cS = make_contacts(cfg, p, kind, path)
@@ -199,6 +199,8 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
     f_tr, _ = analysis.dominant_frequency(t, sig, 0.2, min(t_end, 1.0), fmin=10.0)
     period = 1.0 / (f_dom if np.isfinite(f_dom) and f_dom > 0 else lin["predicted_frequency_hz"])
     env_t, env = analysis.envelope(t, res["cx_L"], period, win=0.1)
+    keep = env_t >= 0.5  # the start-up (controller, stick-slip at ~0 creepage) is not an oscillation
+    env_t, env = env_t[keep], env[keep]
     osc = analysis.oscillation_part(t, res["cx_L"], period)
 
     def osc_pp(a, b):
@@ -222,9 +224,11 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
         "dominant_frequency_hz": f_dom,
         "oscillation_amplitude": amp,
         "oscillation_amplitude_note": "peak-to-peak of c_x,L (dimensionless, linear trend removed) over the last 0.5 s",
-        "sustained_oscillation": bool(amp > OSC_THRESHOLD),
-        "sustained_oscillation_note": f"oscillation_amplitude > {OSC_THRESHOLD} (0.1 % creepage); otherwise "
-                                      "dominant_frequency_hz is that of numerical noise",
+        "sustained_oscillation": bool(amp > OSC_THRESHOLD) if cfg.scenario == "step"
+        else bool(len(env) and env.max() > 10 * OSC_THRESHOLD),
+        "sustained_oscillation_note": f"step: oscillation_amplitude > {OSC_THRESHOLD} (0.1 % creepage); ramp: "
+                                      f"max_envelope_pp > {10 * OSC_THRESHOLD}; otherwise dominant_frequency_hz is "
+                                      "that of numerical noise or of the ramp's trend",
         "transient_frequency_hz": f_tr,
         "transient_frequency_note": "dominant frequency of c_x,L over 0.2-1.0 s (the response to the step, also when it decays)",
         "pp_last_0.25s": analysis.peak_to_peak(t, res["cx_L"], t_end - 0.25, t_end),
@@ -251,6 +255,17 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
         "drivetrain_params": p.source,
     }
     results = {"res": res, "spectrum": (freqs, spec), "curve": (c_grid, f_grid), "env": (env_t, env)}
+    if cfg.scenario == "ramp" and len(osc_windows):
+        cd = c_des_function(cfg)
+        summary["oscillating_cx_des_up"] = [cd(float(osc_windows.min())), cd(min(float(osc_windows.max()), 4.0))]
+        summary["oscillating_cx_des_down"] = [cd(float(osc_windows.max())), cd(max(float(osc_windows.min()), 4.0))]
+        summary["oscillating_note"] = ("desired creepage when the oscillation p-p first/last exceeds 1 % "
+                                       "(compare predicted_unstable_cx_range; growth needs time, so the onset lags)")
+    if cfg.scenario == "ramp" and len(env) and env.max() > OSC_THRESHOLD:
+        tm = float(env_t[np.argmax(env)])
+        summary["zoom_window_s"] = [max(0.0, tm - 0.05), min(t_end, tm + 0.05)]
+    else:
+        summary["zoom_window_s"] = [max(0.0, t_end - 0.1), t_end]
     if write:
         out = Path(cfg.out)
         out.mkdir(parents=True, exist_ok=True)
@@ -262,7 +277,9 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
             files.append(plots.plot_run(out / f"{tag}.png", summary, results))
         summary["files"] = [str(f) for f in files] + [str(out / f"{tag}.json")]
         (out / f"{tag}.json").write_text(json.dumps(_json_clean(summary), indent=2))
-    log(f"[{tag}] dominant frequency {f_dom:.2f} Hz, oscillation p-p {100 * amp:.3f} % (last 0.5 s), "
+    osc_txt = (f"dominant frequency {f_dom:.2f} Hz" if summary["sustained_oscillation"]
+               else f"no sustained oscillation (response {f_tr:.2f} Hz decays)")
+    log(f"[{tag}] {osc_txt}, oscillation p-p {100 * amp:.3f} % (last 0.5 s), "
         f"predicted {lin['predicted_frequency_hz']:.2f} Hz {'UNSTABLE' if lin['predicted_unstable'] else 'stable'}, "
         f"real-time factor {stats['real_time_factor']:.3f}")
     return _json_clean(summary), results
