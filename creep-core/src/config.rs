@@ -282,7 +282,9 @@ impl Config {
     /// The configuration of a preset by name.
     pub fn preset(name: &str) -> Result<Self> {
         let text = preset_text(name)?;
-        Self::from_json_str(text, &format!("preset '{name}'"))
+        let mut c = Self::from_json_str(text, &format!("preset '{name}'"))?;
+        c.preset = name.to_string();
+        Ok(c)
     }
 
     /// Default configuration of a model family (`ecf` -> preset `table4.1`).

@@ -93,3 +93,46 @@ fn reverse_step_takes_longer_than_forward_step() {
         "1 % -> 0.1 % settles in {down} s, 0.1 % -> 1 % in {up} s"
     );
 }
+
+#[test]
+fn marching_new_bristles_is_bit_identical_to_the_sub_step_loop() {
+    use creep_core::Contact;
+    for name in ["table4.1", "fastsim", "wet"] {
+        let cfg = with_grid(preset(name), 30, 9);
+        let mut fast = Contact::new(&cfg).unwrap();
+        let mut plain = Contact::new(&cfg).unwrap();
+        plain.set_march_new_bristles(false);
+        let i0 = Inputs {
+            cx: 0.01,
+            v: 5.0,
+            fn_n: 110e3,
+            ..Inputs::default()
+        };
+        fast.steady(&i0).unwrap();
+        plain.steady(&i0).unwrap();
+        let mut k = 0u32;
+        // step sizes from much less than one cell to more than the whole contact, varying speed and load
+        for (dt, v) in [
+            (2e-6, 5.0),
+            (3.3e-4, 5.0),
+            (1e-3, 20.0),
+            (7e-5, 12.0),
+            (5e-3, 3.0),
+            (1e-3, 5.0),
+        ] {
+            for _ in 0..5 {
+                k += 1;
+                let i = Inputs {
+                    cx: 0.01 + 0.1 * (k as f64 * 0.7).sin().abs(),
+                    cy: 0.001 * (k as f64).cos(),
+                    v,
+                    fn_n: 100e3 + 2e3 * k as f64,
+                    ..Inputs::default()
+                };
+                let a = fast.step(dt, &i).unwrap();
+                let b = plain.step(dt, &i).unwrap();
+                assert_eq!(a, b, "{name}: step {k} (dt = {dt}, v = {v})");
+            }
+        }
+    }
+}

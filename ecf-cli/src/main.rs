@@ -74,6 +74,72 @@ enum Cmd {
     },
     /// Lists presets, effects and parameters with units, defaults and bounds
     Info,
+    /// Compares a configuration with a measurement file: CV(RMSE) (Eq. 2.9) overall, per group and regime; PNG plots
+    Compare {
+        #[command(flatten)]
+        d: DataArgs,
+        /// Print the comparison as JSON ({"cv_rmse_pct": x, "groups": [...], ...})
+        #[arg(long)]
+        json: bool,
+        /// Directory for PNG plots (measured vs model per series, residuals over every variable)
+        #[arg(long)]
+        plots: Option<PathBuf>,
+    },
+    /// Fits parameters to a measurement file (Eq. 5.1, bounded Levenberg-Marquardt) and writes the fitted configuration
+    Fit {
+        #[command(flatten)]
+        d: DataArgs,
+        /// Parameters to fit, comma separated (names as in `ecf info`); default: the layer strengths and hardening scale (+ their temperature coefficients)
+        #[arg(long)]
+        free: Option<String>,
+        /// Where to write the fitted configuration JSON
+        #[arg(long)]
+        out: PathBuf,
+        /// Print the result as JSON
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+#[derive(Args, Clone)]
+struct DataArgs {
+    /// Measurement CSV (columns cx, f [, series, condition, v_mps, fn_kN, a_mm, b_mm, cy, cs_per_m, t_s, t_bulk_C, extra numeric columns])
+    data: PathBuf,
+    /// Configuration JSON file
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Preset (instead of --config)
+    #[arg(long)]
+    preset: Option<String>,
+    /// Bristle grid NXxNY (overrides the configuration's)
+    #[arg(long)]
+    grid: Option<String>,
+    /// Worker threads
+    #[arg(long, default_value_t = 2)]
+    threads: usize,
+}
+
+impl DataArgs {
+    fn load(&self) -> Result<(Config, creep_core::measure::Dataset), CreepError> {
+        let mut cfg = match (&self.config, &self.preset) {
+            (Some(p), None) => Config::from_file(p)?,
+            (None, Some(p)) => Config::preset(p)?,
+            _ => {
+                return Err(CreepError::Config {
+                    source_name: "--config/--preset".into(),
+                    message: "give exactly one of --config FILE or --preset NAME".into(),
+                })
+            }
+        };
+        if let Some(g) = &self.grid {
+            cfg.grid = Grid::parse(g)?;
+        }
+        let data = creep_core::measure::Dataset::from_file(
+            &self.data,
+            &creep_core::measure::Defaults::default(),
+        )?;
+        Ok((cfg, data))
+    }
 }
 
 #[derive(Args, Clone)]
@@ -94,7 +160,12 @@ struct ModelArgs {
     #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
     v_mps: f64,
     /// Normal force, kN (> 0)
-    #[arg(long = "fn-kN", visible_alias = "fn-kn", default_value_t = 110.0, allow_negative_numbers = true)]
+    #[arg(
+        long = "fn-kN",
+        visible_alias = "fn-kn",
+        default_value_t = 110.0,
+        allow_negative_numbers = true
+    )]
     fn_kn: f64,
     /// Semi-axis in rolling direction at this load, mm (with --b-mm)
     #[arg(long)]
@@ -424,6 +495,14 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             }
             warn(&mut model);
         }
+        Cmd::Compare { d, json, plots } => {
+            let (cfg, data) = d.load()?;
+            measure_cmd::compare(&cfg, &data, d.threads, json, plots.as_deref(), &mut w)?;
+        }
+        Cmd::Fit { d, free, out, json } => {
+            let (cfg, data) = d.load()?;
+            measure_cmd::fit(&cfg, &data, d.threads, free.as_deref(), &out, json, &mut w)?;
+        }
         Cmd::Info => {
             writeln!(
                 w,
@@ -456,6 +535,9 @@ fn run(cli: Cli) -> Result<(), CreepError> {
     lock.flush().map_err(io)?;
     Ok(())
 }
+
+mod measure_cmd;
+mod plots;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

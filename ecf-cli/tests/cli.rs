@@ -138,3 +138,110 @@ fn malformed_config_file_reports_line_and_column() {
     assert_ne!(code, 0);
     assert!(err.contains("missing.json"), "{err}");
 }
+
+#[test]
+fn compare_and_fit_on_a_generated_file() {
+    let dir = std::env::temp_dir().join(format!("ecf-cli-fit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // "measurements" from the dry preset at two speeds; compared with table4.1 they differ
+    let mut csv = String::from("cx,f,series,v_mps,fn_kN,humidity\n");
+    for v in ["5", "20"] {
+        let (code, out, err) = ecf(&[
+            "curve",
+            "--preset",
+            "dry",
+            "--grid",
+            "20x7",
+            "--v-mps",
+            v,
+            "--cx",
+            "0.001:0.3:12",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        for (k, l) in out.lines().skip(1).enumerate() {
+            let c: Vec<&str> = l.split(',').collect();
+            csv.push_str(&format!("{},{},v{v},{v},110,{}\n", c[0], c[1], 40 + k));
+        }
+    }
+    let data = dir.join("m.csv");
+    std::fs::write(&data, csv).unwrap();
+    let plots = dir.join("plots");
+    let (code, out, err) = ecf(&[
+        "compare",
+        data.to_str().unwrap(),
+        "--preset",
+        "table4.1",
+        "--grid",
+        "20x7",
+        "--json",
+        "--plots",
+        plots.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let before = v["cv_rmse_pct"].as_f64().unwrap();
+    assert!(before > 1.0, "table4.1 vs dry data must differ: {before}");
+    assert!(v["groups"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|g| g["by"] == "v_mps" && g["value"] == "20"));
+    for png in [
+        "series_00_v5.png",
+        "series_01_v20.png",
+        "residual_over_cx.png",
+        "residual_over_humidity.png",
+        "residual_over_T_max.png",
+    ] {
+        let p = plots.join(png);
+        let bytes = std::fs::read(&p).unwrap_or_else(|_| panic!("{} missing", p.display()));
+        assert_eq!(&bytes[1..4], b"PNG");
+    }
+    let fitted = dir.join("fitted.json");
+    let (code, out, err) = ecf(&[
+        "fit",
+        data.to_str().unwrap(),
+        "--preset",
+        "table4.1",
+        "--grid",
+        "20x7",
+        "--free",
+        "tau_c1_0_GPa,tau_c2_0_GPa",
+        "--out",
+        fitted.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let r: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let after = r["cv_rmse_pct_after"].as_f64().unwrap();
+    assert!((r["cv_rmse_pct_before"].as_f64().unwrap() - before).abs() < 1e-9);
+    assert!(
+        after < 0.5 * before,
+        "fit must reduce the error: {before} -> {after}"
+    );
+    assert!(r["stderr"]["tau_c1_0_GPa"].as_f64().unwrap() > 0.0);
+    // the written configuration reproduces the fitted error
+    let (code, out, err) = ecf(&[
+        "compare",
+        data.to_str().unwrap(),
+        "--config",
+        fitted.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!((v["cv_rmse_pct"].as_f64().unwrap() - after).abs() < 1e-6);
+    // bad --free name
+    let (code, _, err) = ecf(&[
+        "fit",
+        data.to_str().unwrap(),
+        "--preset",
+        "table4.1",
+        "--free",
+        "tau_c9",
+        "--out",
+        fitted.to_str().unwrap(),
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("tau_c9"), "{err}");
+}

@@ -1,0 +1,344 @@
+//! `ecf compare` and `ecf fit`: the measurement loop's comparison and fitting commands.
+
+use crate::plots::{xy_plot, Set, Style};
+use creep_core::evaluate::{compare as cmp, predict, regimes, Prediction};
+use creep_core::fit::{default_free, fit as run_fit};
+use creep_core::measure::Dataset;
+use creep_core::{params, Config, CreepError, Inputs, Model};
+use std::io::Write;
+use std::path::Path;
+
+fn io(e: std::io::Error) -> CreepError {
+    CreepError::Config {
+        source_name: "output".into(),
+        message: e.to_string(),
+    }
+}
+
+/// Compares and reports.
+pub fn compare(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    json: bool,
+    plots: Option<&Path>,
+    w: &mut Vec<u8>,
+) -> Result<(), CreepError> {
+    let pred = predict(cfg, data, threads)?;
+    let c = cmp(data, &pred);
+    if let Some(dir) = plots {
+        write_plots(cfg, data, &pred, dir)?;
+    }
+    if json {
+        let mut v = serde_json::to_value(&c).map_err(|e| CreepError::State(e.to_string()))?;
+        v["data"] = serde_json::json!(data.source);
+        v["config"] = cfg.to_json();
+        v["rows"] = serde_json::json!(data
+            .rows
+            .iter()
+            .zip(&pred)
+            .map(|(r, p)| serde_json::json!({"line": r.line, "series": r.series, "cx": r.cx, "f": r.f, "f_model": p.f, "residual": p.f - r.f, "T_max_C": p.t_max, "slip_velocity_mps": p.slip_velocity}))
+            .collect::<Vec<_>>());
+        writeln!(
+            w,
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(|e| CreepError::State(e.to_string()))?
+        )
+        .map_err(io)?;
+    } else {
+        writeln!(
+            w,
+            "data {} ({} rows), model {} ({})",
+            data.source,
+            c.n,
+            cfg.model.name(),
+            cfg.preset
+        )
+        .map_err(io)?;
+        writeln!(
+            w,
+            "CV(RMSE) = {:.2} % overall, {:.2} % for c_x >= 1 %",
+            c.cv_rmse_pct, c.cv_rmse_pct_cx_ge_1pct
+        )
+        .map_err(io)?;
+        writeln!(
+            w,
+            "{:<10} {:<16} {:>5} {:>12} {:>14}",
+            "group", "value", "n", "CV(RMSE) %", "mean resid."
+        )
+        .map_err(io)?;
+        for g in &c.groups {
+            writeln!(
+                w,
+                "{:<10} {:<16} {:>5} {:>12.2} {:>+14.4}",
+                g.by, g.value, g.n, g.cv_rmse_pct, g.mean_residual
+            )
+            .map_err(io)?;
+        }
+    }
+    Ok(())
+}
+
+fn write_plots(
+    cfg: &Config,
+    data: &Dataset,
+    pred: &[Prediction],
+    dir: &Path,
+) -> Result<(), CreepError> {
+    std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
+        source_name: dir.display().to_string(),
+        message: format!("cannot create: {e}"),
+    })?;
+    let err = |m: String| CreepError::Config {
+        source_name: "--plots".into(),
+        message: m,
+    };
+    for (k, s) in data.series().iter().enumerate() {
+        let idx: Vec<usize> = (0..data.rows.len())
+            .filter(|&i| &data.rows[i].series == s)
+            .collect();
+        let r0 = &data.rows[idx[0]];
+        let (xlabel, meas, model) = if r0.t.is_some() {
+            (
+                "time t (s)",
+                idx.iter()
+                    .map(|&i| (data.rows[i].t.unwrap_or(0.0), data.rows[i].f))
+                    .collect::<Vec<_>>(),
+                idx.iter()
+                    .map(|&i| (data.rows[i].t.unwrap_or(0.0), pred[i].f))
+                    .collect::<Vec<_>>(),
+            )
+        } else {
+            // dense steady model curve at the series' first operating point
+            let (lo, hi) = idx.iter().fold((f64::MAX, f64::MIN), |a, &i| {
+                (a.0.min(data.rows[i].cx), a.1.max(data.rows[i].cx))
+            });
+            let mut c = cfg.clone();
+            if let Some((a, b)) = r0.ab {
+                c.geometry = creep_core::Geometry::SemiAxes {
+                    a,
+                    b,
+                    fn_ref: r0.fn_n,
+                };
+            }
+            let mut m = Model::new(&c)?;
+            let mut curve = Vec::new();
+            for j in 0..=60 {
+                let cx = lo + (hi - lo) * (j as f64 / 60.0).powi(2); // dense near the steep rise
+                let o = m.steady(&Inputs { cx, ..r0.inputs() })?;
+                curve.push((100.0 * cx, o.f));
+            }
+            (
+                "creepage c_x (%)",
+                idx.iter()
+                    .map(|&i| (100.0 * data.rows[i].cx, data.rows[i].f))
+                    .collect(),
+                curve,
+            )
+        };
+        let title = format!("series {s}: v = {} m/s, F_N = {} kN", r0.v, r0.fn_n / 1e3);
+        let sets = [
+            Set {
+                label: "measured",
+                xy: meas,
+                style: Style::Points,
+                color: 0,
+            },
+            Set {
+                label: "model",
+                xy: model,
+                style: Style::Line,
+                color: 1,
+            },
+        ];
+        xy_plot(
+            &dir.join(format!("series_{k:02}_{}.png", sanitize(s))),
+            &title,
+            xlabel,
+            "traction coefficient f (-)",
+            &sets,
+        )
+        .map_err(err)?;
+    }
+    let res: Vec<f64> = data.rows.iter().zip(pred).map(|(r, p)| p.f - r.f).collect();
+    let mut vars: Vec<(String, String, Vec<f64>)> = vec![
+        (
+            "cx".into(),
+            "creepage c_x (-)".into(),
+            data.rows.iter().map(|r| r.cx).collect(),
+        ),
+        (
+            "slip_velocity".into(),
+            "slip velocity |c| v (m/s)".into(),
+            pred.iter().map(|p| p.slip_velocity).collect(),
+        ),
+        (
+            "T_max".into(),
+            "model temperature T_max (degC)".into(),
+            pred.iter().map(|p| p.t_max).collect(),
+        ),
+        (
+            "P_fric".into(),
+            "model frictional power (W)".into(),
+            pred.iter().map(|p| p.p_fric).collect(),
+        ),
+    ];
+    for (k, n) in data.extra_names.iter().enumerate() {
+        vars.push((
+            n.clone(),
+            format!("{n} (extra column)"),
+            data.rows.iter().map(|r| r.extra[k]).collect(),
+        ));
+    }
+    let reg = regimes(data);
+    for (name, label, x) in vars {
+        let sets: Vec<Set> = ["R1", "R2", "R3"]
+            .iter()
+            .enumerate()
+            .map(|(c, rg)| Set {
+                label: rg,
+                xy: x
+                    .iter()
+                    .zip(&res)
+                    .zip(&reg)
+                    .filter(|(_, r)| *r == rg)
+                    .map(|((a, b), _)| (*a, *b))
+                    .collect(),
+                style: Style::Points,
+                color: c,
+            })
+            .filter(|s| !s.xy.is_empty())
+            .collect();
+        xy_plot(
+            &dir.join(format!("residual_over_{}.png", sanitize(&name))),
+            &format!("residual f_model - f_measured over {name}"),
+            &label,
+            "residual (-)",
+            &sets,
+        )
+        .map_err(err)?;
+    }
+    Ok(())
+}
+
+fn sanitize(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '.' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// Fits, writes the fitted configuration atomically and reports.
+pub fn fit(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    free: Option<&str>,
+    out: &Path,
+    json: bool,
+    w: &mut Vec<u8>,
+) -> Result<(), CreepError> {
+    let free: Vec<params::P> = match free {
+        Some(list) => list
+            .split(',')
+            .map(|n| {
+                params::by_name(n.trim()).ok_or_else(|| CreepError::Unknown {
+                    kind: "parameter (--free)".into(),
+                    name: n.trim().into(),
+                    accepted: params::SPECS
+                        .iter()
+                        .map(|s| s.name)
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                })
+            })
+            .collect::<Result<_, _>>()?,
+        None => default_free(cfg),
+    };
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} fitting {msg} [{elapsed}]")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    let names: Vec<&str> = free.iter().map(|p| params::spec(*p).name).collect();
+    bar.set_message(names.join(", "));
+    let progress = |n: usize| {
+        bar.set_message(format!(
+            "{} — {n} model evaluations of {} rows",
+            names.join(", "),
+            data.rows.len()
+        ))
+    };
+    let r = run_fit(cfg, data, &free, threads, &progress)?;
+    bar.finish_and_clear();
+    // write atomically: a temporary file next to the target, then rename
+    let text = serde_json::to_string_pretty(&r.config.to_json())
+        .map_err(|e| CreepError::State(e.to_string()))?
+        + "\n";
+    let tmp = out.with_extension("json.tmp");
+    std::fs::write(&tmp, text).map_err(|e| CreepError::Config {
+        source_name: tmp.display().to_string(),
+        message: format!("cannot write: {e}"),
+    })?;
+    std::fs::rename(&tmp, out).map_err(|e| CreepError::Config {
+        source_name: out.display().to_string(),
+        message: format!("cannot write: {e}"),
+    })?;
+    if json {
+        let params: serde_json::Map<String, serde_json::Value> = r
+            .params
+            .iter()
+            .map(|(n, _, v, _)| (n.clone(), serde_json::json!(v)))
+            .collect();
+        let stderr: serde_json::Map<String, serde_json::Value> = r
+            .params
+            .iter()
+            .map(|(n, _, _, s)| (n.clone(), serde_json::json!(s)))
+            .collect();
+        let start: serde_json::Map<String, serde_json::Value> = r
+            .params
+            .iter()
+            .map(|(n, s, _, _)| (n.clone(), serde_json::json!(s)))
+            .collect();
+        let v = serde_json::json!({
+            "cv_rmse_pct_before": r.cv_rmse_pct_before,
+            "cv_rmse_pct_after": r.cv_rmse_pct_after,
+            "params": params,
+            "stderr": stderr,
+            "start": start,
+            "free": names,
+            "correlation": r.correlation,
+            "evaluations": r.evaluations,
+            "termination": r.termination,
+            "out": out.display().to_string(),
+        });
+        writeln!(
+            w,
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(|e| CreepError::State(e.to_string()))?
+        )
+        .map_err(io)?;
+    } else {
+        writeln!(
+            w,
+            "CV(RMSE) {:.2} % -> {:.2} % ({} model evaluations, {})",
+            r.cv_rmse_pct_before, r.cv_rmse_pct_after, r.evaluations, r.termination
+        )
+        .map_err(io)?;
+        for (n, s, v, se) in &r.params {
+            writeln!(
+                w,
+                "  {n:<22} {s:>12.6} -> {v:>12.6} ± {se:.2e} {}",
+                params::spec(params::by_name(n).unwrap_or(params::P::Mu)).unit
+            )
+            .map_err(io)?;
+        }
+        writeln!(w, "fitted configuration written to {}", out.display()).map_err(io)?;
+    }
+    Ok(())
+}
