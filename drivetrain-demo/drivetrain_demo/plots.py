@@ -11,10 +11,17 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
+def _osc_text(s):
+    if s.get("sustained_oscillation", True):
+        return f"f_dom = {s['dominant_frequency_hz']:.1f} Hz"
+    if s["scenario"] == "ramp":
+        return "no oscillation (p-p < 1 %)"
+    return f"no sustained oscillation (response {s['transient_frequency_hz']:.1f} Hz decays)"
+
+
 def _title(s):
-    return (f"{s['scenario']} | {s['model'].upper()} | v = {s['v_mps']:g} m/s | "
-            f"f_dom = {s['dominant_frequency_hz']:.1f} Hz | pred. {s['predicted_frequency_hz']:.1f} Hz "
-            f"({'unstable' if s['predicted_unstable'] else 'stable'})")
+    return (f"{s['scenario']} | {s['model'].upper()} | v = {s['v_mps']:g} m/s | {_osc_text(s)} | "
+            f"pred. {s['predicted_frequency_hz']:.1f} Hz ({'unstable' if s['predicted_unstable'] else 'stable'})")
 
 
 def _timeseries(ax, res, zoom=None):
@@ -29,18 +36,20 @@ def _timeseries(ax, res, zoom=None):
     ax.grid(alpha=0.3)
 
 
-def _spectrum(ax, s, spectrum):
-    freqs, spec = spectrum
+def _spectrum(ax, s, results):
+    sustained = s.get("sustained_oscillation", True)
+    freqs, spec = results["spectrum"] if sustained else results["spectrum_transient"]
     if len(freqs):
         m = freqs <= 300
         ax.semilogy(freqs[m], np.maximum(spec[m], 1e-12), lw=0.8)
     if s.get("predicted_frequency_hz"):
         ax.axvline(s["predicted_frequency_hz"], color="r", ls="--", lw=0.8, label="linear prediction")
-    if s.get("dominant_frequency_hz"):
-        ax.axvline(s["dominant_frequency_hz"], color="k", ls=":", lw=0.8, label="dominant")
+    fd = s.get("dominant_frequency_hz") if sustained else s.get("transient_frequency_hz")
+    if fd:
+        ax.axvline(fd, color="k", ls=":", lw=0.8, label="dominant")
     ax.set_xlabel("frequency / Hz")
     ax.set_ylabel("|C_x,L| (amplitude)")
-    w = s.get("settled_window_s")
+    w = s.get("settled_window_s") if sustained else [0.2, min(1.0, s["t_end_s"])]
     ax.set_title(f"spectrum of $c_{{x,L}}$" + (f", {w[0]:.2f}-{w[1]:.2f} s" if w else ""), fontsize=9)
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
@@ -69,7 +78,7 @@ def plot_run(path: Path, s: dict, results: dict) -> Path:
     _timeseries(axs[0, 1], res, zoom=tuple(z))
     axs[0, 1].set_title(f"zoom {z[0]:.2f}-{z[1]:.2f} s" + (" (largest oscillation)" if s["scenario"] == "ramp" else ""),
                         fontsize=9)
-    _spectrum(axs[1, 0], s, results["spectrum"])
+    _spectrum(axs[1, 0], s, results)
     _fc(axs[1, 1], res, results["curve"], t_from=s["settled_window_s"][0])
     axs[1, 1].set_title("traction over creepage, settled window (seed Fig. 6.6)", fontsize=9)
     fig.suptitle(_title(s), fontsize=10)
@@ -127,9 +136,9 @@ def plot_compare(path: Path, runs: list) -> Path:
             continue
         _timeseries(axs[0, j], res)
         axs[0, j].legend(fontsize=7)
-        axs[0, j].set_title(f"{s['model'].upper()}: f_dom = {s['dominant_frequency_hz']:.1f} Hz, "
+        axs[0, j].set_title(f"{s['model'].upper()}: {_osc_text(s)},\n"
                             f"p-p(last 0.5 s) = {100 * s['oscillation_amplitude']:.2f} %", fontsize=10)
-        _spectrum(axs[1, j], s, results["spectrum"])
+        _spectrum(axs[1, j], s, results)
         _fc(axs[2, j], res, results["curve"], t_from=s["settled_window_s"][0])
     ylims = [ax.get_ylim() for ax in axs[0]]
     for ax in axs[0]:

@@ -196,7 +196,7 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
     f_dom, (freqs, spec) = analysis.dominant_frequency(t, sig, *settled, fmin=10.0)
     amp = analysis.peak_to_peak(t, res["cx_L"], t_end - 0.5, t_end)
     # frequency of the transient right after the step / start (meaningful also when it decays)
-    f_tr, _ = analysis.dominant_frequency(t, sig, 0.2, min(t_end, 1.0), fmin=10.0)
+    f_tr, spec_tr = analysis.dominant_frequency(t, sig, 0.2, min(t_end, 1.0), fmin=10.0)
     period = 1.0 / (f_dom if np.isfinite(f_dom) and f_dom > 0 else lin["predicted_frequency_hz"])
     env_t, env = analysis.envelope(t, res["cx_L"], period, win=0.1)
     keep = env_t >= 0.5  # the start-up (controller, stick-slip at ~0 creepage) is not an oscillation
@@ -254,7 +254,8 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
         "parallel_contacts": stats["parallel_contacts"],
         "drivetrain_params": p.source,
     }
-    results = {"res": res, "spectrum": (freqs, spec), "curve": (c_grid, f_grid), "env": (env_t, env)}
+    results = {"res": res, "spectrum": (freqs, spec), "curve": (c_grid, f_grid), "env": (env_t, env),
+               "spectrum_transient": spec_tr}
     if cfg.scenario == "ramp" and len(osc_windows):
         cd = c_des_function(cfg)
         summary["oscillating_cx_des_up"] = [cd(float(osc_windows.min())), cd(min(float(osc_windows.max()), 4.0))]
@@ -277,8 +278,12 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
             files.append(plots.plot_run(out / f"{tag}.png", summary, results))
         summary["files"] = [str(f) for f in files] + [str(out / f"{tag}.json")]
         (out / f"{tag}.json").write_text(json.dumps(_json_clean(summary), indent=2))
-    osc_txt = (f"dominant frequency {f_dom:.2f} Hz" if summary["sustained_oscillation"]
-               else f"no sustained oscillation (response {f_tr:.2f} Hz decays)")
+    if summary["sustained_oscillation"]:
+        osc_txt = f"dominant frequency {f_dom:.2f} Hz"
+    elif cfg.scenario == "ramp":
+        osc_txt = f"no oscillation (p-p of c_x,L below {100 * 10 * OSC_THRESHOLD:g} % throughout)"
+    else:
+        osc_txt = f"no sustained oscillation (response {f_tr:.2f} Hz decays)"
     log(f"[{tag}] {osc_txt}, oscillation p-p {100 * amp:.3f} % (last 0.5 s), "
         f"predicted {lin['predicted_frequency_hz']:.2f} Hz {'UNSTABLE' if lin['predicted_unstable'] else 'stable'}, "
         f"real-time factor {stats['real_time_factor']:.3f}")
