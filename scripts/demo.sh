@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Main job of the project: set everything up and reproduce the drive-train oscillation result.
-#  1. release build of the ecf CLI, 2. the contact FMU (scripts/build-fmu.sh),
-#  3. the Python venv from the pinned requirements (scripts/setup-venv.sh),
+#  1. scripts/setup.sh (apt packages if missing, cargo fetch, Python venv from the pinned
+#     requirements) and the release build of the ecf CLI, 2. the contact FMU (scripts/build-fmu.sh),
+#  3. the Python venv check (scripts/setup-venv.sh),
 #  4. the `step` scenario (desired creepage 0 -> 15 % at 5 m/s) with ECF and FASTSIM,
 #     printing the two dominant frequencies and where the plots are.
 # Environment: OUT (output directory, default out/demo), DEMO_ARGS (extra options for
@@ -10,7 +11,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=${OUT:-out/demo}
 
-echo "== 1/4 cargo build --release (ecf CLI)" >&2
+echo "== 1/4 set-up and cargo build --release (ecf CLI)" >&2
+if [ -f scripts/setup.sh ]; then bash scripts/setup.sh; fi
 cargo build --release -q -p ecf-cli >&2
 echo "== 2/4 contact FMU" >&2
 FMU=$(bash scripts/build-fmu.sh | tail -n 1)
