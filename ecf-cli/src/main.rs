@@ -85,6 +85,14 @@ enum Cmd {
         #[arg(long)]
         plots: Option<PathBuf>,
     },
+    /// Which physical effect is missing? Residual correlations, each catalogue effect added, refitted and scored on held-out groups
+    Diagnose {
+        #[command(flatten)]
+        d: DataArgs,
+        /// Print the diagnosis as JSON ({"baseline_cv_rmse_pct": x, "candidates": [...], "correlations": [...]})
+        #[arg(long)]
+        json: bool,
+    },
     /// Fits parameters to a measurement file (Eq. 5.1, bounded Levenberg-Marquardt) and writes the fitted configuration
     Fit {
         #[command(flatten)]
@@ -498,6 +506,10 @@ fn run(cli: Cli) -> Result<(), CreepError> {
         Cmd::Compare { d, json, plots } => {
             let (cfg, data) = d.load()?;
             measure_cmd::compare(&cfg, &data, d.threads, json, plots.as_deref(), &mut w)?;
+        }
+        Cmd::Diagnose { d, json } => {
+            let (cfg, data) = d.load()?;
+            measure_cmd::diagnose(&cfg, &data, d.threads, json, &mut w)?;
         }
         Cmd::Fit { d, free, out, json } => {
             let (cfg, data) = d.load()?;

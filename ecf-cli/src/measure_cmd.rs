@@ -342,3 +342,60 @@ pub fn fit(
     }
     Ok(())
 }
+
+/// Diagnoses and reports.
+pub fn diagnose(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    json: bool,
+    w: &mut Vec<u8>,
+) -> Result<(), CreepError> {
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} diagnosing: {msg} [{elapsed}]")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    let progress = |stage: &str| bar.set_message(format!("refitting with {stage}"));
+    let d = creep_core::diagnose::diagnose(cfg, data, threads, &progress)?;
+    bar.finish_and_clear();
+    if json {
+        writeln!(
+            w,
+            "{}",
+            serde_json::to_string_pretty(&d).map_err(|e| CreepError::State(e.to_string()))?
+        )
+        .map_err(io)?;
+        return Ok(());
+    }
+    writeln!(
+        w,
+        "data {} ({} rows), configuration {} {:?}",
+        data.source,
+        data.rows.len(),
+        cfg.model.name(),
+        cfg.effects.to_vec()
+    )
+    .map_err(io)?;
+    writeln!(w, "CV(RMSE) as given {:.2} %; held-out (folds by {}, {} folds) with its own parameters refitted {:.2} %", d.baseline_cv_rmse_pct, d.folds_by, d.folds, d.baseline_heldout_cv_rmse_pct).map_err(io)?;
+    writeln!(
+        w,
+        "\nresidual correlations (model - measured), strongest first:"
+    )
+    .map_err(io)?;
+    for c in &d.correlations {
+        writeln!(w, "  {:<22} r = {:+.2}", c.variable, c.r).map_err(io)?;
+    }
+    writeln!(w, "\ncandidate effects, best held-out error first:").map_err(io)?;
+    for c in &d.candidates {
+        writeln!(
+            w,
+            "  {:<20} held-out {:6.2} %  fitted {:6.2} %\n    {}",
+            c.effect, c.heldout_cv_rmse_pct, c.fitted_cv_rmse_pct, c.explanation
+        )
+        .map_err(io)?;
+    }
+    writeln!(w, "\n{}", d.verdict).map_err(io)?;
+    Ok(())
+}

@@ -1,0 +1,347 @@
+//! Diagnosis: which physical effect is missing? Residual correlations, then each catalogue effect added, refitted and judged on held-out groups.
+//!
+//! 1. Residuals of the configuration (as given) against every variable: creepage, slip
+//!    velocity, frictional power, model temperature, speed, load, p0, dc_x/dt (time series)
+//!    and every extra column; ranked by |Pearson r|.
+//! 2. Held-out error: the rows are split into folds by speed (or load, or series, whichever
+//!    has at least two values); for each fold the free parameters are fitted on the other
+//!    folds and the fold is predicted. The baseline is the configuration with its default
+//!    free parameters ([`crate::fit::default_free`]); each candidate is the configuration
+//!    plus one catalogue effect it lacks, with that effect's parameters freed as well.
+//! 3. Candidates are ranked by held-out CV(RMSE). A missing effect is claimed only when the
+//!    best candidate lowers the held-out error by at least `CLAIM_FRACTION` of the baseline.
+
+use crate::config::{Config, ModelKind};
+use crate::effects::{self, Effect};
+use crate::error::Result;
+use crate::evaluate::{predict, Prediction};
+use crate::fit::{default_free, fit};
+use crate::measure::{cv_rmse_pct, Dataset};
+use crate::params::P;
+
+/// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
+pub const CLAIM_FRACTION: f64 = 0.25;
+
+/// Correlation of the residuals with one variable.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Correlation {
+    /// Variable name.
+    pub variable: String,
+    /// Pearson correlation coefficient of residual (model - measured) and variable.
+    pub r: f64,
+    /// Number of rows.
+    pub n: usize,
+}
+
+/// One tried effect.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Candidate {
+    /// Effect name (catalogue name).
+    pub effect: String,
+    /// Held-out CV(RMSE), %.
+    pub heldout_cv_rmse_pct: f64,
+    /// In-sample CV(RMSE) after fitting on all rows, %.
+    pub fitted_cv_rmse_pct: f64,
+    /// Parameters freed.
+    pub free: Vec<String>,
+    /// Physical description and the evidence.
+    pub explanation: String,
+}
+
+/// The diagnosis.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Diagnosis {
+    /// CV(RMSE) of the configuration as given, %.
+    pub baseline_cv_rmse_pct: f64,
+    /// Held-out CV(RMSE) of the configuration with its own parameters refitted, %.
+    pub baseline_heldout_cv_rmse_pct: f64,
+    /// Grouping used for the folds.
+    pub folds_by: String,
+    /// Number of folds.
+    pub folds: usize,
+    /// Candidates, best (lowest held-out error) first.
+    pub candidates: Vec<Candidate>,
+    /// Residual correlations, strongest first.
+    pub correlations: Vec<Correlation>,
+    /// The effect claimed missing, if any.
+    pub missing_effect: Option<String>,
+    /// One-paragraph verdict in words.
+    pub verdict: String,
+}
+
+fn pearson(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for (a, b) in x.iter().zip(y) {
+        sxy += (a - mx) * (b - my);
+        sxx += (a - mx) * (a - mx);
+        syy += (b - my) * (b - my);
+    }
+    if sxx <= 0.0 || syy <= 0.0 {
+        0.0
+    } else {
+        sxy / (sxx * syy).sqrt()
+    }
+}
+
+/// Residual correlations with every variable, strongest first.
+pub fn correlations(data: &Dataset, pred: &[Prediction]) -> Vec<Correlation> {
+    let res: Vec<f64> = data.rows.iter().zip(pred).map(|(r, p)| p.f - r.f).collect();
+    let mut vars: Vec<(String, Vec<f64>)> = vec![
+        ("cx".into(), data.rows.iter().map(|r| r.cx.abs()).collect()),
+        (
+            "slip_velocity_mps".into(),
+            pred.iter().map(|p| p.slip_velocity).collect(),
+        ),
+        (
+            "frictional_power_W".into(),
+            pred.iter().map(|p| p.p_fric).collect(),
+        ),
+        (
+            "model_T_max_C".into(),
+            pred.iter().map(|p| p.t_max).collect(),
+        ),
+        ("v_mps".into(), data.rows.iter().map(|r| r.v).collect()),
+        (
+            "fn_kN".into(),
+            data.rows.iter().map(|r| r.fn_n / 1e3).collect(),
+        ),
+        ("p0_MPa".into(), pred.iter().map(|p| p.p0 / 1e6).collect()),
+    ];
+    if data.rows.iter().any(|r| r.t.is_some()) {
+        vars.push((
+            "dcx_dt_per_s".into(),
+            pred.iter().map(|p| p.dcx_dt.abs()).collect(),
+        ));
+    }
+    for (k, n) in data.extra_names.iter().enumerate() {
+        vars.push((n.clone(), data.rows.iter().map(|r| r.extra[k]).collect()));
+    }
+    let mut out: Vec<Correlation> = vars
+        .into_iter()
+        .map(|(v, x)| Correlation {
+            variable: v,
+            r: pearson(&x, &res),
+            n: res.len(),
+        })
+        .collect();
+    out.sort_by(|a, b| b.r.abs().total_cmp(&a.r.abs()));
+    out
+}
+
+/// Fold labels: by speed, else load, else series, else 3 interleaved folds.
+fn folds(data: &Dataset) -> (String, Vec<usize>) {
+    type KeyFn = fn(&crate::measure::Row) -> String;
+    let by: [(&str, KeyFn); 3] = [
+        ("v_mps", |r| format!("{}", r.v)),
+        ("fn_kN", |r| format!("{}", r.fn_n)),
+        ("series", |r| r.series.clone()),
+    ];
+    for (name, key) in by.iter() {
+        let mut values: Vec<String> = Vec::new();
+        let labels: Vec<usize> = data
+            .rows
+            .iter()
+            .map(|r| {
+                let k = key(r);
+                match values.iter().position(|v| *v == k) {
+                    Some(i) => i,
+                    None => {
+                        values.push(k);
+                        values.len() - 1
+                    }
+                }
+            })
+            .collect();
+        if values.len() >= 2 {
+            return (name.to_string(), labels);
+        }
+    }
+    (
+        "rows (3 interleaved folds)".into(),
+        (0..data.rows.len()).map(|i| i % 3).collect(),
+    )
+}
+
+fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
+    Dataset {
+        source: data.source.clone(),
+        extra_names: data.extra_names.clone(),
+        rows: data
+            .rows
+            .iter()
+            .zip(keep)
+            .filter(|(_, k)| **k)
+            .map(|(r, _)| r.clone())
+            .collect(),
+    }
+}
+
+/// Held-out CV(RMSE): fit `free` on all folds but one, predict that one.
+fn heldout(
+    cfg: &Config,
+    data: &Dataset,
+    labels: &[usize],
+    free: &[P],
+    threads: usize,
+) -> Result<f64> {
+    let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
+    let mut meas = Vec::new();
+    let mut model = Vec::new();
+    for f in 0..nf {
+        let train = subset(data, &labels.iter().map(|l| *l != f).collect::<Vec<_>>());
+        let test = subset(data, &labels.iter().map(|l| *l == f).collect::<Vec<_>>());
+        if test.rows.is_empty() {
+            continue;
+        }
+        let fitted = if free.is_empty() || train.rows.len() <= free.len() {
+            cfg.clone()
+        } else {
+            fit(cfg, &train, free, threads, &|_| {})?.config
+        };
+        let p = predict(&fitted, &test, threads)?;
+        meas.extend(test.rows.iter().map(|r| r.f));
+        model.extend(p.iter().map(|p| p.f));
+    }
+    Ok(cv_rmse_pct(&meas, &model))
+}
+
+/// Parameters an effect brings when it is added.
+fn effect_params(e: Effect) -> Vec<P> {
+    match e {
+        Effect::Temperature => vec![P::Tc1T, P::Tc2T],
+        Effect::PressureDependence => vec![P::Tc1P, P::Tc2P],
+        Effect::LayerElasticity => vec![P::Le0],
+        Effect::VocePlasticity => vec![P::Tc10, P::Tc20, P::Lp0],
+        _ => vec![],
+    }
+}
+
+/// Variables whose residual correlation is evidence for an effect.
+fn signature(e: Effect) -> &'static [&'static str] {
+    match e {
+        Effect::Temperature => &[
+            "frictional_power_W",
+            "slip_velocity_mps",
+            "v_mps",
+            "model_T_max_C",
+        ],
+        Effect::PressureDependence => &["fn_kN", "p0_MPa"],
+        Effect::LayerElasticity => &["cx"],
+        Effect::VocePlasticity => &["cx"],
+        Effect::Transient | Effect::ElasticUnloading => &["dcx_dt_per_s"],
+        Effect::Coulomb => &["cx"],
+    }
+}
+
+/// The first sentence of a description (a ". " after "Eq", "Sec" or "Fig" does not end it).
+fn first_sentence(text: &str) -> &str {
+    let mut from = 0;
+    while let Some(i) = text[from..].find(". ") {
+        let end = from + i;
+        let before = &text[..end];
+        if !(before.ends_with("Eq")
+            || before.ends_with("Sec")
+            || before.ends_with("Fig")
+            || before.ends_with("Tab"))
+        {
+            return &text[..end];
+        }
+        from = end + 2;
+    }
+    text.trim_end_matches('.')
+}
+
+/// Runs the diagnosis. `progress` receives a short text per stage.
+pub fn diagnose(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<Diagnosis> {
+    progress("baseline");
+    let pred = predict(cfg, data, threads)?;
+    let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
+    let baseline_cv = cv_rmse_pct(&meas, &pred.iter().map(|p| p.f).collect::<Vec<_>>());
+    let corr = correlations(data, &pred);
+    let (folds_by, labels) = folds(data);
+    let nfolds = labels.iter().max().map(|m| m + 1).unwrap_or(1);
+    let base_free = default_free(cfg);
+    let base_heldout = heldout(cfg, data, &labels, &base_free, threads)?;
+    let mut candidates = Vec::new();
+    if cfg.model != ModelKind::Polach && !cfg.has(Effect::Coulomb) {
+        let has_series = data.rows.iter().any(|r| r.t.is_some());
+        for info in effects::CATALOGUE {
+            let e = info.effect;
+            if cfg.has(e) || e == Effect::Coulomb {
+                continue;
+            }
+            if matches!(e, Effect::Transient | Effect::ElasticUnloading) && !has_series {
+                continue; // no time series: these effects cannot show in steady data
+            }
+            progress(info.name);
+            let mut c = cfg.clone();
+            c.effects.insert(e);
+            let mut free = base_free.clone();
+            for p in effect_params(e) {
+                if !free.contains(&p) {
+                    free.push(p);
+                }
+            }
+            if e == Effect::Temperature {
+                // the temperature set of default_free now applies
+                for p in default_free(&c) {
+                    if !free.contains(&p) {
+                        free.push(p);
+                    }
+                }
+            }
+            let h = heldout(&c, data, &labels, &free, threads)?;
+            let fitted = fit(&c, data, &free, threads, &|_| {})?;
+            let evidence = corr
+                .iter()
+                .filter(|k| signature(e).contains(&k.variable.as_str()))
+                .max_by(|a, b| a.r.abs().total_cmp(&b.r.abs()))
+                .map(|k| format!("residual correlation with {} r = {:+.2}", k.variable, k.r))
+                .unwrap_or_else(|| "no signature variable in the data".into());
+            let first_sentence = first_sentence(info.description);
+            candidates.push(Candidate {
+                effect: info.name.to_string(),
+                heldout_cv_rmse_pct: h,
+                fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
+                free: free.iter().map(|p| crate::params::spec(*p).name.to_string()).collect(),
+                explanation: format!(
+                    "{first_sentence}. Evidence: {evidence}; adding it and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %."
+                ),
+            });
+        }
+    }
+    candidates.sort_by(|a, b| a.heldout_cv_rmse_pct.total_cmp(&b.heldout_cv_rmse_pct));
+    let missing = candidates
+        .first()
+        .filter(|c| c.heldout_cv_rmse_pct < (1.0 - CLAIM_FRACTION) * base_heldout)
+        .map(|c| c.effect.clone());
+    let verdict = match &missing {
+        Some(m) => format!(
+            "Missing effect: {m}. With it the held-out CV(RMSE) falls from {base_heldout:.2} % to {:.2} %; the strongest residual correlation of the configuration as given is with {} (r = {:+.2}).",
+            candidates[0].heldout_cv_rmse_pct, corr[0].variable, corr[0].r
+        ),
+        None => format!(
+            "No missing effect claimed: no catalogue effect lowers the held-out CV(RMSE) ({base_heldout:.2} %) by {:.0} % or more. Strongest residual correlation: {} (r = {:+.2}); if it is an extra column, try a formula effect on it.",
+            CLAIM_FRACTION * 100.0,
+            corr.first().map(|c| c.variable.as_str()).unwrap_or("-"),
+            corr.first().map(|c| c.r).unwrap_or(0.0)
+        ),
+    };
+    Ok(Diagnosis {
+        baseline_cv_rmse_pct: baseline_cv,
+        baseline_heldout_cv_rmse_pct: base_heldout,
+        folds_by,
+        folds: nfolds,
+        candidates,
+        correlations: corr,
+        missing_effect: missing,
+        verdict,
+    })
+}

@@ -1,0 +1,164 @@
+//! The measurement loop on files with a known hidden effect: diagnose names it, adding it brings the error to the noise level; with no hidden effect nothing is claimed.
+mod common;
+use common::*;
+use creep_core::diagnose::diagnose;
+use creep_core::fit::{default_free, fit};
+use creep_core::measure::{Dataset, Defaults};
+use creep_core::{Config, Effect, Geometry, Inputs, Model};
+
+fn noise(seed: &mut u64, sd: f64) -> f64 {
+    let mut s = 0.0;
+    for _ in 0..4 {
+        *seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        s += ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
+    }
+    s * sd * 3.0f64.sqrt()
+}
+
+/// Steady curves of `truth` at the given (speed, load) points, 12 creepages each, with noise.
+fn steady_file(truth: &Config, points: &[(f64, f64)], sd: f64) -> Dataset {
+    let mut csv = String::from("cx,f,series,v_mps,fn_kN\n");
+    let mut seed = 11;
+    for &(v, fn_kn) in points {
+        let mut m = Model::new(truth).unwrap();
+        for i in 0..12 {
+            let cx = 0.0015 * 1.55f64.powi(i);
+            let f =
+                m.steady(&Inputs {
+                    cx,
+                    v,
+                    fn_n: fn_kn * 1e3,
+                    ..Inputs::default()
+                })
+                .unwrap()
+                .f + noise(&mut seed, sd);
+            csv.push_str(&format!("{cx},{f},v{v}_F{fn_kn},{v},{fn_kn}\n"));
+        }
+    }
+    Dataset::from_csv_str(&csv, "synthetic.csv", &Defaults::default()).unwrap()
+}
+
+fn coarse(name: &str) -> Config {
+    with_grid(preset(name), 20, 7)
+}
+
+fn noise_cv(data: &Dataset, sd: f64) -> f64 {
+    100.0 * sd / (data.rows.iter().map(|r| r.f).sum::<f64>() / data.rows.len() as f64)
+}
+
+#[test]
+fn hidden_temperature_is_found_and_fixes_the_error() {
+    // the truth lacks pressure dependence and layer elasticity too, so that the configuration
+    // under test (truth without temperature) has three candidates to choose from
+    let mut truth = coarse("table4.1");
+    truth.effects.remove(Effect::PressureDependence);
+    truth.effects.remove(Effect::LayerElasticity);
+    let sd = 0.002;
+    let data = steady_file(&truth, &[(5.0, 110.0), (10.0, 110.0), (20.0, 110.0)], sd);
+    let mut cfg = truth.clone();
+    cfg.effects.remove(Effect::Temperature);
+    let d = diagnose(&cfg, &data, 2, &|_| {}).unwrap();
+    assert_eq!(d.folds_by, "v_mps");
+    assert_eq!(d.candidates.len(), 3);
+    assert_eq!(d.candidates[0].effect, "temperature", "{:#?}", d.candidates);
+    assert_eq!(
+        d.missing_effect.as_deref(),
+        Some("temperature"),
+        "{}",
+        d.verdict
+    );
+    let speedish = [
+        "frictional_power_W",
+        "slip_velocity_mps",
+        "v_mps",
+        "model_T_max_C",
+        "cx",
+    ];
+    assert!(
+        speedish.contains(&d.correlations[0].variable.as_str()),
+        "{:?}",
+        d.correlations[0]
+    );
+    // add it, refit: error at the noise level
+    let mut fixed = cfg.clone();
+    fixed.effects.insert(Effect::Temperature);
+    let r = fit(&fixed, &data, &default_free(&fixed), 2, &|_| {}).unwrap();
+    assert!(
+        r.cv_rmse_pct_after < 1.5 * noise_cv(&data, sd),
+        "after {} % vs noise {} %",
+        r.cv_rmse_pct_after,
+        noise_cv(&data, sd)
+    );
+}
+
+#[test]
+fn hidden_pressure_dependence_is_found_with_several_loads() {
+    let mut truth = coarse("table4.1");
+    truth.effects.remove(Effect::Temperature);
+    // stronger granular behaviour than Tab. 4.1 so that the load dependence is clear
+    truth.params.set_by_name("tau_c1_p_per_GPa", 3.0).unwrap();
+    truth.params.set_by_name("tau_c2_p_per_GPa", 3.0).unwrap();
+    truth.params.set_by_name("tau_c1_0_GPa", 0.25).unwrap();
+    truth.params.set_by_name("tau_c2_0_GPa", 0.6).unwrap();
+    truth.geometry = Geometry::SemiAxes {
+        a: 7.63e-3,
+        b: 7.88e-3,
+        fn_ref: 110e3,
+    };
+    let sd = 0.002;
+    let data = steady_file(&truth, &[(10.0, 30.0), (10.0, 70.0), (10.0, 110.0)], sd);
+    let mut cfg = truth.clone();
+    cfg.effects.remove(Effect::PressureDependence);
+    let d = diagnose(&cfg, &data, 2, &|_| {}).unwrap();
+    assert_eq!(d.folds_by, "fn_kN");
+    assert_eq!(
+        d.candidates[0].effect, "pressure_dependence",
+        "{:#?}",
+        d.candidates
+    );
+    assert_eq!(
+        d.missing_effect.as_deref(),
+        Some("pressure_dependence"),
+        "{}",
+        d.verdict
+    );
+    let mut fixed = cfg.clone();
+    fixed.effects.insert(Effect::PressureDependence);
+    let free = [
+        creep_core::params::P::Tc10,
+        creep_core::params::P::Tc20,
+        creep_core::params::P::Tc1P,
+        creep_core::params::P::Tc2P,
+    ];
+    let r = fit(&fixed, &data, &free, 2, &|_| {}).unwrap();
+    assert!(
+        r.cv_rmse_pct_after < 1.5 * noise_cv(&data, sd),
+        "after {} % vs noise {} %",
+        r.cv_rmse_pct_after,
+        noise_cv(&data, sd)
+    );
+}
+
+#[test]
+fn no_hidden_effect_no_claim() {
+    let mut truth = coarse("table4.1");
+    truth.effects.remove(Effect::Temperature);
+    let data = steady_file(&truth, &[(5.0, 110.0), (20.0, 110.0)], 0.002);
+    let d = diagnose(&truth, &data, 2, &|_| {}).unwrap();
+    assert!(
+        d.missing_effect.is_none(),
+        "{}\n{:#?}",
+        d.verdict,
+        d.candidates
+    );
+    for c in &d.candidates {
+        assert!(
+            c.heldout_cv_rmse_pct > 0.75 * d.baseline_heldout_cv_rmse_pct,
+            "{} improves too much: {:?}",
+            c.effect,
+            c
+        );
+    }
+}
