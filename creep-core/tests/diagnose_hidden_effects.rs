@@ -162,3 +162,69 @@ fn no_hidden_effect_no_claim() {
         );
     }
 }
+
+#[test]
+fn hidden_transient_response_is_found_in_time_series() {
+    // periodic creepage (seed Sec. 4.5.2) at two speeds, measured with the transient model;
+    // the configuration under test is quasi-steady
+    let truth = coarse("table4.1");
+    let sd = 0.002;
+    let mut csv = String::from("cx,f,series,v_mps,fn_kN,t_s\n");
+    let mut seed = 5;
+    for v in [5.0, 10.0] {
+        let mut m = Model::new(&truth).unwrap();
+        let (cm, ca, f0) = (0.2, 0.15, 100.0);
+        let dt = 1.0 / (f0 * 40.0);
+        m.steady(&Inputs {
+            cx: cm,
+            v,
+            fn_n: 110e3,
+            ..Inputs::default()
+        })
+        .unwrap();
+        csv.push_str(&format!(
+            "{cm},{},s{v},{v},110,0\n",
+            m.outputs().f + noise(&mut seed, sd)
+        ));
+        for k in 1..=120 {
+            let t = k as f64 * dt;
+            let cx = cm + ca * (2.0 * std::f64::consts::PI * f0 * t).sin();
+            let f =
+                m.step(
+                    dt,
+                    &Inputs {
+                        cx,
+                        v,
+                        fn_n: 110e3,
+                        ..Inputs::default()
+                    },
+                )
+                .unwrap()
+                .f + noise(&mut seed, sd);
+            csv.push_str(&format!("{cx},{f},s{v},{v},110,{t}\n"));
+        }
+    }
+    let data = Dataset::from_csv_str(&csv, "series.csv", &Defaults::default()).unwrap();
+    let mut cfg = truth.clone();
+    cfg.effects.remove(Effect::Transient);
+    let d = diagnose(&cfg, &data, 2, &|_| {}).unwrap();
+    assert_eq!(d.candidates[0].effect, "transient", "{:#?}", d.candidates);
+    assert_eq!(
+        d.missing_effect.as_deref(),
+        Some("transient"),
+        "{}",
+        d.verdict
+    );
+    assert!(d.correlations.iter().any(|c| c.variable == "dcx_dt_per_s"));
+    // with it (no parameter to fit) the error is at the noise level
+    let mut fixed = cfg.clone();
+    fixed.effects.insert(Effect::Transient);
+    let p = creep_core::evaluate::predict(&fixed, &data, 2).unwrap();
+    let cmp = creep_core::evaluate::compare(&data, &p);
+    assert!(
+        cmp.cv_rmse_pct < 1.5 * noise_cv(&data, sd),
+        "{} % vs noise {} %",
+        cmp.cv_rmse_pct,
+        noise_cv(&data, sd)
+    );
+}
