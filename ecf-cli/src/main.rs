@@ -93,6 +93,17 @@ enum Cmd {
         #[arg(long)]
         json: bool,
     },
+    /// One self-contained HTML page: comparison, diagnosis and plots; with --compare-with, before and after side by side
+    Report {
+        #[command(flatten)]
+        d: DataArgs,
+        /// A second configuration (e.g. the fitted one) shown beside the first
+        #[arg(long)]
+        compare_with: Option<PathBuf>,
+        /// Output HTML file
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Fits parameters to a measurement file (Eq. 5.1, bounded Levenberg-Marquardt) and writes the fitted configuration
     Fit {
         #[command(flatten)]
@@ -510,6 +521,31 @@ fn run(cli: Cli) -> Result<(), CreepError> {
         Cmd::Diagnose { d, json } => {
             let (cfg, data) = d.load()?;
             measure_cmd::diagnose(&cfg, &data, d.threads, json, &mut w)?;
+        }
+        Cmd::Report {
+            d,
+            compare_with,
+            out,
+        } => {
+            let (cfg, data) = d.load()?;
+            let second = match compare_with {
+                Some(p) => {
+                    let mut c = Config::from_file(&p)?;
+                    if let Some(g) = &d.grid {
+                        c.grid = Grid::parse(g)?;
+                    }
+                    Some((p.display().to_string(), c))
+                }
+                None => None,
+            };
+            let first_name = d
+                .config
+                .as_ref()
+                .map(|p| p.display().to_string())
+                .or(d.preset.clone())
+                .unwrap_or_default();
+            measure_cmd::report(&cfg, &first_name, second.as_ref(), &data, d.threads, &out)?;
+            writeln!(w, "{}", out.display()).map_err(io)?;
         }
         Cmd::Fit { d, free, out, json } => {
             let (cfg, data) = d.load()?;

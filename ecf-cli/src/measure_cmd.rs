@@ -399,3 +399,142 @@ pub fn diagnose(
     writeln!(w, "\n{}", d.verdict).map_err(io)?;
     Ok(())
 }
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Comparison table, plots (embedded) of one configuration as an HTML fragment.
+fn report_column(
+    cfg: &Config,
+    name: &str,
+    data: &Dataset,
+    threads: usize,
+    tmp: &Path,
+) -> Result<(String, f64), CreepError> {
+    use base64::Engine;
+    let pred = predict(cfg, data, threads)?;
+    let c = cmp(data, &pred);
+    write_plots(cfg, data, &pred, tmp)?;
+    let mut h = format!(
+        "<h2>{}</h2><p>model <b>{}</b>, effects {}</p>",
+        esc(name),
+        cfg.model.name(),
+        esc(&format!("{:?}", cfg.effects.to_vec()))
+    );
+    h += &format!("<p class=big>CV(RMSE) = <b>{:.2} %</b> overall, {:.2} % for c<sub>x</sub> &ge; 1 % (seed Eq. 2.9)</p>", c.cv_rmse_pct, c.cv_rmse_pct_cx_ge_1pct);
+    h += "<table><tr><th>group</th><th>value</th><th>n</th><th>CV(RMSE) %</th><th>mean residual</th></tr>";
+    for g in &c.groups {
+        h += &format!(
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{:+.4}</td></tr>",
+            esc(&g.by),
+            esc(&g.value),
+            g.n,
+            g.cv_rmse_pct,
+            g.mean_residual
+        );
+    }
+    h += "</table>";
+    let mut pngs: Vec<_> = std::fs::read_dir(tmp)
+        .map_err(|e| CreepError::Config {
+            source_name: tmp.display().to_string(),
+            message: e.to_string(),
+        })?
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .collect();
+    pngs.sort();
+    for p in pngs {
+        let bytes = std::fs::read(&p).map_err(|e| CreepError::Config {
+            source_name: p.display().to_string(),
+            message: e.to_string(),
+        })?;
+        let b64 = base64::engine::general_purpose::STANDARD.encode(bytes);
+        h += &format!("<figure><img alt=\"{}\" src=\"data:image/png;base64,{b64}\"><figcaption>{}</figcaption></figure>", esc(&p.display().to_string()), esc(&p.file_name().map(|f| f.to_string_lossy().to_string()).unwrap_or_default()));
+    }
+    Ok((h, c.cv_rmse_pct))
+}
+
+/// Writes the self-contained HTML report (atomically).
+pub fn report(
+    cfg: &Config,
+    name: &str,
+    second: Option<&(String, Config)>,
+    data: &Dataset,
+    threads: usize,
+    out: &Path,
+) -> Result<(), CreepError> {
+    let tmp = std::env::temp_dir().join(format!("ecf-report-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    let (col1, cv1) = report_column(
+        cfg,
+        &format!("before: {name}"),
+        data,
+        threads,
+        &tmp.join("a"),
+    )?;
+    let col2 = match second {
+        Some((n, c)) => Some(report_column(
+            c,
+            &format!("after: {n}"),
+            data,
+            threads,
+            &tmp.join("b"),
+        )?),
+        None => None,
+    };
+    let d = creep_core::diagnose::diagnose(cfg, data, threads, &|_| {})?;
+    let _ = std::fs::remove_dir_all(&tmp);
+    let mut diag = format!(
+        "<h2>Diagnosis of the first configuration</h2><p><b>{}</b></p>",
+        esc(&d.verdict)
+    );
+    diag += &format!(
+        "<p>held-out folds by {} ({} folds); baseline held-out CV(RMSE) {:.2} %</p>",
+        esc(&d.folds_by),
+        d.folds,
+        d.baseline_heldout_cv_rmse_pct
+    );
+    diag += "<table><tr><th>candidate effect</th><th>held-out CV(RMSE) %</th><th>fitted CV(RMSE) %</th><th>why</th></tr>";
+    for c in &d.candidates {
+        diag += &format!(
+            "<tr><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{}</td></tr>",
+            esc(&c.effect),
+            c.heldout_cv_rmse_pct,
+            c.fitted_cv_rmse_pct,
+            esc(&c.explanation)
+        );
+    }
+    diag += "</table><table><tr><th>variable</th><th>residual correlation r</th></tr>";
+    for c in &d.correlations {
+        diag += &format!("<tr><td>{}</td><td>{:+.2}</td></tr>", esc(&c.variable), c.r);
+    }
+    diag += "</table>";
+    let summary = match &col2 {
+        Some((_, cv2)) => format!("<p class=big>CV(RMSE): {cv1:.2} % &rarr; {cv2:.2} %</p>"),
+        None => format!("<p class=big>CV(RMSE): {cv1:.2} %</p>"),
+    };
+    let cols = match col2 {
+        Some((c2, _)) => format!("<div class=cols><div>{col1}</div><div>{c2}</div></div>"),
+        None => format!("<div>{col1}</div>"),
+    };
+    let html = format!(
+        "<!DOCTYPE html><html><head><meta charset=utf-8><title>ECF report: {src}</title><style>body{{font-family:sans-serif;margin:2em;max-width:1900px}} table{{border-collapse:collapse;margin:1em 0}} td,th{{border:1px solid #bbb;padding:3px 8px;text-align:left}} .cols{{display:flex;gap:2em}} .cols>div{{flex:1;min-width:0}} img{{max-width:100%}} .big{{font-size:1.3em}}</style></head><body><h1>Measurements {src} ({n} rows) against the model</h1>{summary}{diag}{cols}<p>Generated by ecf {ver}.</p></body></html>\n",
+        src = esc(&data.source),
+        n = data.rows.len(),
+        ver = env!("CARGO_PKG_VERSION"),
+    );
+    let tmp_out = out.with_extension("html.tmp");
+    std::fs::write(&tmp_out, html).map_err(|e| CreepError::Config {
+        source_name: tmp_out.display().to_string(),
+        message: format!("cannot write: {e}"),
+    })?;
+    std::fs::rename(&tmp_out, out).map_err(|e| CreepError::Config {
+        source_name: out.display().to_string(),
+        message: format!("cannot write: {e}"),
+    })?;
+    Ok(())
+}

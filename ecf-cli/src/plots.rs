@@ -50,8 +50,14 @@ fn bounds(sets: &[Set]) -> ((f64, f64), (f64, f64)) {
         if r.0 > r.1 {
             (0.0, 1.0)
         } else {
-            let d = (r.1 - r.0).max(1e-12 * r.1.abs().max(1.0));
-            (r.0 - 0.05 * d, r.1 + 0.05 * d)
+            let d = r.1 - r.0;
+            if d <= 1e-9 * r.1.abs().max(r.0.abs()).max(1e-12) {
+                // constant data: a visible range around the value
+                let h = (0.1 * r.0.abs()).max(1e-3);
+                (r.0 - h, r.1 + h)
+            } else {
+                (r.0 - 0.05 * d, r.1 + 0.05 * d)
+            }
         }
     };
     (pad(xr), pad(yr))

@@ -231,6 +231,49 @@ fn compare_and_fit_on_a_generated_file() {
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert!((v["cv_rmse_pct"].as_f64().unwrap() - after).abs() < 1e-6);
+    // diagnose (JSON) and the HTML report, before and after side by side
+    let (code, out, err) = ecf(&[
+        "diagnose",
+        data.to_str().unwrap(),
+        "--preset",
+        "table4.1",
+        "--grid",
+        "20x7",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let d: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(d["baseline_cv_rmse_pct"].as_f64().unwrap() > 0.0);
+    assert!(d["correlations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|c| c["variable"] == "humidity"));
+    assert!(d["candidates"].is_array() && d["verdict"].is_string());
+    let html = dir.join("report.html");
+    let (code, _, err) = ecf(&[
+        "report",
+        data.to_str().unwrap(),
+        "--preset",
+        "table4.1",
+        "--grid",
+        "20x7",
+        "--compare-with",
+        fitted.to_str().unwrap(),
+        "--out",
+        html.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&html).unwrap();
+    assert!(
+        text.contains("data:image/png;base64,")
+            && text.contains("before:")
+            && text.contains("after:")
+    );
+    assert!(
+        !text.contains("src=\"/") && !text.contains("src=\"file:"),
+        "images must be embedded"
+    );
     // bad --free name
     let (code, _, err) = ecf(&[
         "fit",
