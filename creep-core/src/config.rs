@@ -157,6 +157,8 @@ pub struct Config {
     pub grid: Grid,
     /// Contact geometry.
     pub geometry: Geometry,
+    /// User-written formula effects (module [`crate::formula`]).
+    pub formulas: Vec<crate::formula::FormulaEffect>,
 }
 
 #[derive(Debug, Default, Deserialize, Serialize)]
@@ -178,6 +180,18 @@ struct RawConfig {
     grid: Option<Grid>,
     #[serde(default)]
     geometry: Option<Map<String, Value>>,
+    #[serde(default)]
+    formula_effects: Option<Vec<RawFormula>>,
+}
+
+#[derive(Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct RawFormula {
+    name: String,
+    target: String,
+    factor: String,
+    #[serde(default)]
+    params: Map<String, Value>,
 }
 
 /// The presets shipped with the crate: (name, JSON text).
@@ -334,6 +348,7 @@ impl Config {
                     bound: Bound::Elliptic,
                     grid: DEFAULT_GRID,
                     geometry: DEFAULT_GEOMETRY,
+                    formulas: Vec::new(),
                 }
             }
         };
@@ -397,6 +412,53 @@ impl Config {
         if let Some(g) = &raw.geometry {
             cfg.geometry = parse_geometry(src, g)?;
         }
+        if let Some(list) = &raw.formula_effects {
+            for f in list {
+                let target = crate::formula::Target::parse(&f.target)
+                    .map_err(|e| cfg_err(src, format!("formula_effects.{}: {e}", f.name)))?;
+                let mut ps = Vec::new();
+                for (n, v) in &f.params {
+                    let get = |k: &str, d: f64| -> Result<f64> {
+                        match v.get(k) {
+                            None => Ok(d),
+                            Some(x) => x.as_f64().ok_or_else(|| {
+                                cfg_err(
+                                    src,
+                                    format!(
+                                        "formula_effects.{}.params.{n}.{k}: expected a number",
+                                        f.name
+                                    ),
+                                )
+                            }),
+                        }
+                    };
+                    if !v.is_object() {
+                        return Err(cfg_err(src, format!("formula_effects.{}.params.{n}: expected {{\"value\": v, \"min\": lo, \"max\": hi}}", f.name)));
+                    }
+                    ps.push((
+                        n.clone(),
+                        get("value", f64::NAN)?,
+                        get("min", f64::MIN)?,
+                        get("max", f64::MAX)?,
+                    ));
+                }
+                let fe = crate::formula::FormulaEffect::new(&f.name, target, &f.factor, ps)
+                    .map_err(|e| cfg_err(src, e.to_string()))?;
+                if cfg.formulas.iter().any(|g| g.name == fe.name) {
+                    return Err(cfg_err(
+                        src,
+                        format!("formula_effects: duplicate name '{}'", fe.name),
+                    ));
+                }
+                cfg.formulas.push(fe);
+            }
+        }
+        if cfg.model == ModelKind::Polach && !cfg.formulas.is_empty() {
+            return Err(cfg_err(
+                src,
+                "formula_effects act on the bristle engine (ecf, fastsim), not on polach".into(),
+            ));
+        }
         if cfg.model == ModelKind::Fastsim && !cfg.effects.has(Effect::Coulomb) {
             return Err(cfg_err(
                 src,
@@ -428,7 +490,16 @@ impl Config {
                 serde_json::json!({"line_radius_mm": r * 1e3, "line_width_mm": width * 1e3})
             }
         };
+        let formulas: Vec<Value> = self
+            .formulas
+            .iter()
+            .map(|f| {
+                let ps: Map<String, Value> = f.params.iter().map(|(n, v, lo, hi)| (n.clone(), serde_json::json!({"value": v, "min": lo, "max": hi}))).collect();
+                serde_json::json!({"name": f.name, "target": f.target.name(), "factor": f.source, "params": ps})
+            })
+            .collect();
         serde_json::json!({
+            "formula_effects": formulas,
             "model": self.model.name(),
             "effects": self.effects.to_vec().iter().map(|e| effects::info(*e).name).collect::<Vec<_>>(),
             "params": ps,

@@ -15,12 +15,16 @@ use crate::config::{Config, ModelKind};
 use crate::effects::{self, Effect};
 use crate::error::Result;
 use crate::evaluate::{predict, Prediction};
-use crate::fit::{default_free, fit};
+use crate::fit::{default_free, fit_params, FreeParam};
+use crate::formula::{FormulaEffect, Target};
 use crate::measure::{cv_rmse_pct, Dataset};
 use crate::params::P;
 
 /// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
 pub const CLAIM_FRACTION: f64 = 0.25;
+
+/// |r| from which an extra column counts as showing strong residual structure.
+pub const STRONG: f64 = 0.3;
 
 /// Correlation of the residuals with one variable.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -183,7 +187,7 @@ fn heldout(
     cfg: &Config,
     data: &Dataset,
     labels: &[usize],
-    free: &[P],
+    free: &[FreeParam],
     threads: usize,
 ) -> Result<f64> {
     let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
@@ -198,7 +202,7 @@ fn heldout(
         let fitted = if free.is_empty() || train.rows.len() <= free.len() {
             cfg.clone()
         } else {
-            fit(cfg, &train, free, threads, &|_| {})?.config
+            fit_params(cfg, &train, free, threads, &|_| {})?.config
         };
         let p = predict(&fitted, &test, threads)?;
         meas.extend(test.rows.iter().map(|r| r.f));
@@ -267,7 +271,10 @@ pub fn diagnose(
     let corr = correlations(data, &pred);
     let (folds_by, labels) = folds(data);
     let nfolds = labels.iter().max().map(|m| m + 1).unwrap_or(1);
-    let base_free = default_free(cfg);
+    let base_free: Vec<FreeParam> = default_free(cfg)
+        .into_iter()
+        .map(FreeParam::Builtin)
+        .collect();
     let base_heldout = heldout(cfg, data, &labels, &base_free, threads)?;
     let mut candidates = Vec::new();
     if cfg.model != ModelKind::Polach && !cfg.has(Effect::Coulomb) {
@@ -285,20 +292,20 @@ pub fn diagnose(
             c.effects.insert(e);
             let mut free = base_free.clone();
             for p in effect_params(e) {
-                if !free.contains(&p) {
-                    free.push(p);
+                if !free.contains(&FreeParam::Builtin(p)) {
+                    free.push(FreeParam::Builtin(p));
                 }
             }
             if e == Effect::Temperature {
                 // the temperature set of default_free now applies
                 for p in default_free(&c) {
-                    if !free.contains(&p) {
-                        free.push(p);
+                    if !free.contains(&FreeParam::Builtin(p)) {
+                        free.push(FreeParam::Builtin(p));
                     }
                 }
             }
             let h = heldout(&c, data, &labels, &free, threads)?;
-            let fitted = fit(&c, data, &free, threads, &|_| {})?;
+            let fitted = fit_params(&c, data, &free, threads, &|_| {})?;
             let evidence = corr
                 .iter()
                 .filter(|k| signature(e).contains(&k.variable.as_str()))
@@ -310,11 +317,61 @@ pub fn diagnose(
                 effect: info.name.to_string(),
                 heldout_cv_rmse_pct: h,
                 fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
-                free: free.iter().map(|p| crate::params::spec(*p).name.to_string()).collect(),
+                free: free.iter().map(|p| p.name(&c)).collect(),
                 explanation: format!(
                     "{first_sentence}. Evidence: {evidence}; adding it and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %."
                 ),
             });
+        }
+    }
+    // generic formula effects on extra columns with strong residual structure
+    if cfg.model != ModelKind::Polach {
+        let targets: &[Target] = if cfg.has(Effect::Coulomb) {
+            &[Target::Mu]
+        } else {
+            &[Target::TauC2, Target::TauC1]
+        };
+        for cr in corr
+            .iter()
+            .filter(|c| data.extra_names.contains(&c.variable) && c.r.abs() >= STRONG)
+            .take(2)
+        {
+            let k = data
+                .extra_names
+                .iter()
+                .position(|n| *n == cr.variable)
+                .unwrap_or(0);
+            let x: Vec<f64> = data.rows.iter().map(|r| r.extra[k]).collect();
+            let mean = x.iter().sum::<f64>() / x.len() as f64;
+            let sd = (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / x.len() as f64)
+                .sqrt()
+                .max(1e-12);
+            for &t in targets {
+                progress(&format!("formula on {} ({})", cr.variable, t.name()));
+                let name = format!("{}_by_{}", t.name(), cr.variable);
+                let factor = format!("exp(k * ({} - {mean}) / {sd})", cr.variable);
+                let fe = FormulaEffect::new(&name, t, &factor, vec![("k".into(), 0.0, -3.0, 3.0)])?;
+                let mut c = cfg.clone();
+                c.formulas.push(fe);
+                let mut free = base_free.clone();
+                free.push(FreeParam::Formula {
+                    effect: c.formulas.len() - 1,
+                    param: 0,
+                });
+                let h = heldout(&c, data, &labels, &free, threads)?;
+                let fitted = fit_params(&c, data, &free, threads, &|_| {})?;
+                let kfit = fitted.params.last().map(|p| p.2).unwrap_or(0.0);
+                candidates.push(Candidate {
+                    effect: format!("formula: {} x exp(k ({} - {mean:.4}) / {sd:.4})", t.name(), cr.variable),
+                    heldout_cv_rmse_pct: h,
+                    fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
+                    free: free.iter().map(|p| p.name(&c)).collect(),
+                    explanation: format!(
+                        "No catalogue effect uses the column '{}', but the residuals follow it (r = {:+.2}). A generic formula effect scaling {} by exp(k (x - mean)/sd) (fitted k = {kfit:+.3}) takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %. Look for the physical mechanism behind this column, then write it as a formula effect or an effect in Rust.",
+                        cr.variable, cr.r, t.name()
+                    ),
+                });
+            }
         }
     }
     candidates.sort_by(|a, b| a.heldout_cv_rmse_pct.total_cmp(&b.heldout_cv_rmse_pct));

@@ -275,6 +275,15 @@ pub struct Contact {
     t_tol: f64,
     /// Compute bristles that enter during a step by a march (identical results, less work).
     march: bool,
+    /// Values of the extra (data) columns the formula effects use, by name.
+    extra: Vec<(String, f64)>,
+    /// Formula variables: local placeholders, operating point, columns (see `formula`).
+    fvars: Vec<f64>,
+    /// Product of the operating-point-only formula factors per target
+    /// (tau_c1, tau_c2, L_e, L_p, mu).
+    fstatic: [f64; 5],
+    /// True if some formula uses local bristle state.
+    flocal: bool,
 }
 
 impl Contact {
@@ -333,6 +342,10 @@ impl Contact {
             initialized: false,
             warnings: Vec::new(),
             march: true,
+            extra: Vec::new(),
+            fvars: Vec::new(),
+            fstatic: [1.0; 5],
+            flocal: cfg.formulas.iter().any(|f| f.local),
             t_tol: {
                 let r = Resolved::from_config(cfg);
                 let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
@@ -389,6 +402,7 @@ impl Contact {
             self.flex = kalker::flexibilities(ka, kb, self.r.g, &c);
         }
         self.inputs = *inputs;
+        self.update_formula_vars()?;
         if self.r.temperature && inputs.v > V_STANDSTILL {
             let vw = inputs.v * (1.0 + inputs.cx).abs();
             if !thermal::peclet_ok(self.patch.a, inputs.v, vw, self.r.kappa_w, self.r.kappa_r) {
@@ -403,6 +417,97 @@ impl Contact {
             }
         }
         Ok(())
+    }
+
+    /// Sets the values of extra (data) columns that formula effects use.
+    pub fn set_extra(&mut self, values: &[(String, f64)]) -> Result<()> {
+        self.extra = values.to_vec();
+        self.update_formula_vars()
+    }
+
+    fn update_formula_vars(&mut self) -> Result<()> {
+        if self.cfg.formulas.is_empty() {
+            return Ok(());
+        }
+        let i = &self.inputs;
+        let mut v = vec![0.0; crate::formula::LOCAL.len()];
+        v.extend([i.v, i.fn_n / 1e3, i.cx, i.cy, i.spin]);
+        let mut fstatic = [1.0; 5];
+        for f in &self.cfg.formulas {
+            let mut vars = v.clone();
+            for c in &f.columns {
+                let x = self
+                    .extra
+                    .iter()
+                    .find(|(n, _)| n == c)
+                    .map(|(_, x)| *x)
+                    .ok_or_else(|| CreepError::Config {
+                        source_name: format!("formula_effects.{}", f.name),
+                        message: format!(
+                            "uses the column '{c}', which the data do not provide (have: {})",
+                            self.extra
+                                .iter()
+                                .map(|e| e.0.as_str())
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    })?;
+                vars.push(x);
+            }
+            if !f.local {
+                fstatic[f.target as usize] *= f.eval(&vars).max(0.0);
+            }
+        }
+        self.fstatic = fstatic;
+        self.fvars = v;
+        Ok(())
+    }
+
+    /// Scales a material by the formula effects (local ones evaluated at this bristle).
+    #[inline]
+    fn apply_formulas(
+        &self,
+        mut m: Material,
+        coulomb: bool,
+        p: f64,
+        t: f64,
+        u: f64,
+        slip: f64,
+    ) -> Material {
+        if self.cfg.formulas.is_empty() {
+            return m;
+        }
+        let mut fac = self.fstatic;
+        if self.flocal {
+            let mut vars = self.fvars.clone();
+            vars[0] = p / 1e9;
+            vars[1] = t;
+            vars[2] = u * 1e3;
+            vars[3] = slip;
+            for f in self.cfg.formulas.iter().filter(|f| f.local) {
+                let mut vv = vars.clone();
+                for c in &f.columns {
+                    vv.push(
+                        self.extra
+                            .iter()
+                            .find(|(n, _)| n == c)
+                            .map(|(_, x)| *x)
+                            .unwrap_or(f64::NAN),
+                    );
+                }
+                fac[f.target as usize] *= f.eval(&vv).max(0.0);
+            }
+        }
+        if coulomb {
+            m.tc1 *= fac[4];
+            m.tc2 *= fac[4];
+        } else {
+            m.tc2 *= fac[1];
+            m.tc1 = (m.tc1 * fac[0]).min(m.tc2);
+            m.lp *= fac[3];
+        }
+        m.le *= fac[2];
+        m
     }
 
     /// Kinematic/thermal context for a sub-step of duration `h` moving distance `dist`.
@@ -498,9 +603,16 @@ impl Contact {
         }
     }
 
-    /// Full material at temperature `t` (Eq. 4.3, 4.4).
+    /// Full material at temperature `t` (Eq. 4.3, 4.4) with the formula effects at a bristle
+    /// with displacement |u| = `u` (m) and rigid slip speed `slip` (m/s).
     #[inline]
-    fn material(&self, np: &NodeP, t: f64) -> Material {
+    fn material(&self, np: &NodeP, t: f64, u: f64, slip: f64) -> Material {
+        let m = self.material_base(np, t);
+        self.apply_formulas(m, self.r.coulomb, np.p, t, u, slip)
+    }
+
+    #[inline]
+    fn material_base(&self, np: &NodeP, t: f64) -> Material {
         let r = &self.r;
         if r.coulomb {
             let le = np.le / r.tf(t, r.le_t);
@@ -588,8 +700,14 @@ impl Contact {
             0.0
         };
         let old = *s;
+        let u_abs = old.u[0].hypot(old.u[1]);
+        let slip = if k.h > 0.0 {
+            du[0].hypot(du[1]) / k.h
+        } else {
+            0.0
+        };
         let eval = |t: f64| -> (BristleState, f64) {
-            let m = self.material(np, t);
+            let m = self.material(np, t, u_abs, slip);
             let lxe = k.lx + m.le;
             let lye = k.ly + m.le;
             let lse = k.ls + m.le;
@@ -1065,7 +1183,11 @@ impl Contact {
                 let xi = self.ell[j] - (slot as f64 + self.phase[j]) * dxi;
                 let s = &self.st[self.idx(j, slot)];
                 let np = self.node_p(xi, self.eta[j]);
-                let m = self.material(&np, s.temp);
+                let v = self.inputs.v;
+                let slip = v
+                    * (self.inputs.cx - self.inputs.spin * self.eta[j] * self.patch.b)
+                        .hypot(self.inputs.cy + self.inputs.spin * xi * self.patch.a);
+                let m = self.material(&np, s.temp, s.u[0].hypot(s.u[1]), slip);
                 FieldPoint {
                     x: xi * self.patch.a,
                     tau: (s.tau[0] * s.tau[0] + s.tau[1] * s.tau[1]).sqrt(),

@@ -35,6 +35,14 @@ fn config_for(cfg: &Config, r: &Row) -> Config {
     c
 }
 
+fn extras(data: &Dataset, r: &Row) -> Vec<(String, f64)> {
+    data.extra_names
+        .iter()
+        .cloned()
+        .zip(r.extra.iter().copied())
+        .collect()
+}
+
 fn geometry_key(r: &Row) -> Option<(u64, u64, u64)> {
     r.ab.map(|(a, b)| (a.to_bits(), b.to_bits(), r.fn_n.to_bits()))
 }
@@ -62,6 +70,9 @@ fn run_job(
                     e.insert(Model::new(&config_for(cfg, r))?)
                 }
             };
+            if !cfg.formulas.is_empty() {
+                m.set_extra(&extras(data, r))?;
+            }
             let o = m.steady(&r.inputs())?;
             out.push((
                 *i,
@@ -81,6 +92,9 @@ fn run_job(
             let mut prev: Option<&Row> = None;
             for &i in idx {
                 let r = &data.rows[i];
+                if !cfg.formulas.is_empty() {
+                    m.set_extra(&extras(data, r))?;
+                }
                 let o = match prev {
                     None => m.steady(&r.inputs())?,
                     Some(p) => m.step(r.t.unwrap_or(0.0) - p.t.unwrap_or(0.0), &r.inputs())?,

@@ -15,6 +15,111 @@ use crate::params::{spec, P};
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
 
+/// A parameter that can be fitted: one of the registry's, or a formula effect's own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FreeParam {
+    /// A registry parameter.
+    Builtin(P),
+    /// Parameter `param` of formula effect `effect` (indices into `Config::formulas`).
+    Formula {
+        /// Index of the formula effect.
+        effect: usize,
+        /// Index of its parameter.
+        param: usize,
+    },
+}
+
+impl From<P> for FreeParam {
+    fn from(p: P) -> Self {
+        FreeParam::Builtin(p)
+    }
+}
+
+impl FreeParam {
+    /// Name: the registry name, or `EFFECT.PARAM` for a formula parameter.
+    pub fn name(&self, cfg: &Config) -> String {
+        match *self {
+            FreeParam::Builtin(p) => spec(p).name.to_string(),
+            FreeParam::Formula { effect, param } => format!(
+                "{}.{}",
+                cfg.formulas[effect].name, cfg.formulas[effect].params[param].0
+            ),
+        }
+    }
+    /// Current value (display unit).
+    pub fn get(&self, cfg: &Config) -> f64 {
+        match *self {
+            FreeParam::Builtin(p) => cfg.params.get(p),
+            FreeParam::Formula { effect, param } => cfg.formulas[effect].params[param].1,
+        }
+    }
+    /// Bounds (display unit).
+    pub fn bounds(&self, cfg: &Config) -> (f64, f64) {
+        match *self {
+            FreeParam::Builtin(p) => (spec(p).min, spec(p).max),
+            FreeParam::Formula { effect, param } => {
+                let q = &cfg.formulas[effect].params[param];
+                (q.2, q.3)
+            }
+        }
+    }
+    /// Unit (display).
+    pub fn unit(&self) -> &'static str {
+        match *self {
+            FreeParam::Builtin(p) => spec(p).unit,
+            FreeParam::Formula { .. } => "-",
+        }
+    }
+    fn set(&self, cfg: &mut Config, v: f64) -> Result<()> {
+        match *self {
+            FreeParam::Builtin(p) => cfg.params.set(p, v),
+            FreeParam::Formula { effect, param } => {
+                cfg.formulas[effect].set_param(param, v);
+                Ok(())
+            }
+        }
+    }
+    /// Resolves a name: a registry parameter, `EFFECT.PARAM`, or a formula parameter name
+    /// that is unique among the formula effects.
+    pub fn resolve(cfg: &Config, name: &str) -> Result<FreeParam> {
+        if let Some(p) = crate::params::by_name(name) {
+            return Ok(FreeParam::Builtin(p));
+        }
+        let mut found = Vec::new();
+        for (e, f) in cfg.formulas.iter().enumerate() {
+            for (k, q) in f.params.iter().enumerate() {
+                if name == format!("{}.{}", f.name, q.0) || name == q.0 {
+                    found.push(FreeParam::Formula {
+                        effect: e,
+                        param: k,
+                    });
+                }
+            }
+        }
+        match found.len() {
+            1 => Ok(found[0]),
+            0 => {
+                Err(CreepError::Unknown {
+                    kind: "parameter".into(),
+                    name: name.into(),
+                    accepted: crate::params::SPECS
+                        .iter()
+                        .map(|s| s.name.to_string())
+                        .chain(cfg.formulas.iter().flat_map(|f| {
+                            f.params.iter().map(move |q| format!("{}.{}", f.name, q.0))
+                        }))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                })
+            }
+            _ => Err(CreepError::Config {
+                source_name: "--free".into(),
+                message: format!("'{name}' is ambiguous; write EFFECT.PARAM"),
+            }),
+        }
+    }
+}
+
 /// Result of a fit.
 #[derive(Clone, Debug)]
 pub struct FitResult {
@@ -53,30 +158,34 @@ pub fn default_free(cfg: &Config) -> Vec<P> {
 
 #[derive(Clone, Copy)]
 enum Map {
+    Identity,
     Exp { lo: f64 },
     Logistic { lo: f64, hi: f64 },
 }
 
 impl Map {
-    fn new(id: P, start: f64) -> Self {
-        let s = spec(id);
-        if s.max.is_infinite() || s.max > 1e3 * start.abs().max(1e-12) + s.min {
-            Map::Exp { lo: s.min }
+    /// Exponential map for a lower bound only (or an upper bound three orders of magnitude
+    /// above the start), logistic for a finite interval, identity when unbounded.
+    fn new((lo, hi): (f64, f64), start: f64) -> Self {
+        let far = |h: f64| h.is_infinite() || h >= 1e3 * start.abs().max(lo.abs()).max(1e-12);
+        if lo.is_finite() && start > lo && far(hi) {
+            Map::Exp { lo }
+        } else if lo.is_finite() && hi.is_finite() && hi > lo {
+            Map::Logistic { lo, hi }
         } else {
-            Map::Logistic {
-                lo: s.min,
-                hi: s.max,
-            }
+            Map::Identity
         }
     }
     fn to_p(self, z: f64) -> f64 {
         match self {
+            Map::Identity => z,
             Map::Exp { lo } => lo + z.exp(),
             Map::Logistic { lo, hi } => lo + (hi - lo) / (1.0 + (-z).exp()),
         }
     }
     fn to_z(self, p: f64) -> f64 {
         match self {
+            Map::Identity => p,
             Map::Exp { lo } => (p - lo).max(1e-12).ln(),
             Map::Logistic { lo, hi } => {
                 let r = ((p - lo) / (hi - lo)).clamp(1e-9, 1.0 - 1e-9);
@@ -87,6 +196,7 @@ impl Map {
     /// dp/dz
     fn dp_dz(self, z: f64) -> f64 {
         match self {
+            Map::Identity => 1.0,
             Map::Exp { .. } => z.exp(),
             Map::Logistic { lo, hi } => {
                 let e = (-z).exp();
@@ -99,7 +209,7 @@ impl Map {
 struct Problem<'a> {
     base: Config,
     data: &'a Dataset,
-    free: Vec<P>,
+    free: Vec<FreeParam>,
     maps: Vec<Map>,
     z: DVector<f64>,
     threads: usize,
@@ -112,9 +222,9 @@ impl Problem<'_> {
     fn config_at(&self, z: &DVector<f64>) -> Result<Config> {
         let mut c = self.base.clone();
         for (k, id) in self.free.iter().enumerate() {
-            let s = spec(*id);
-            let v = self.maps[k].to_p(z[k]).clamp(s.min, s.max);
-            c.params.set(*id, v)?;
+            let (lo, hi) = id.bounds(&self.base);
+            let v = self.maps[k].to_p(z[k]).clamp(lo, hi);
+            id.set(&mut c, v)?;
         }
         Ok(c)
     }
@@ -174,6 +284,18 @@ pub fn fit(
     threads: usize,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<FitResult> {
+    let refs: Vec<FreeParam> = free.iter().map(|p| FreeParam::Builtin(*p)).collect();
+    fit_params(cfg, data, &refs, threads, progress)
+}
+
+/// Like [`fit`], for registry and formula parameters.
+pub fn fit_params(
+    cfg: &Config,
+    data: &Dataset,
+    free: &[FreeParam],
+    threads: usize,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<FitResult> {
     if free.is_empty() {
         return Err(CreepError::Config {
             source_name: "--free".into(),
@@ -190,11 +312,11 @@ pub fn fit(
             ),
         });
     }
-    let start: Vec<f64> = free.iter().map(|id| cfg.params.get(*id)).collect();
+    let start: Vec<f64> = free.iter().map(|id| id.get(cfg)).collect();
     let maps: Vec<Map> = free
         .iter()
         .zip(&start)
-        .map(|(id, s)| Map::new(*id, *s))
+        .map(|(id, s)| Map::new(id.bounds(cfg), *s))
         .collect();
     let z0 = DVector::from_iterator(free.len(), maps.iter().zip(&start).map(|(m, s)| m.to_z(*s)));
     let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
@@ -228,7 +350,7 @@ pub fn fit(
         .ok_or_else(|| CreepError::State("Jacobian at the optimum failed".into()))?;
     let mut jp = jz.clone();
     for k in 0..free.len() {
-        let d = maps[k].dp_dz(z[k]) * spec(free[k]).to_si / spec(free[k]).to_si;
+        let d = maps[k].dp_dz(z[k]);
         let col = jz.column(k) / d;
         jp.set_column(k, &col);
     }
@@ -261,14 +383,7 @@ pub fn fit(
     let params = free
         .iter()
         .enumerate()
-        .map(|(k, id)| {
-            (
-                spec(*id).name.to_string(),
-                start[k],
-                fitted.params.get(*id),
-                stderr[k],
-            )
-        })
+        .map(|(k, id)| (id.name(cfg), start[k], id.get(&fitted), stderr[k]))
         .collect();
     Ok(FitResult {
         config: fitted,
@@ -293,7 +408,7 @@ mod tests {
             (P::Mu, 0.25),
             (P::PolKA, 0.68),
         ] {
-            let m = Map::new(id, p);
+            let m = Map::new((spec(id).min, spec(id).max), p);
             assert!((m.to_p(m.to_z(p)) - p).abs() < 1e-9 * p.max(1.0), "{id:?}");
             let s = spec(id);
             for z in [-50.0, 0.0, 50.0] {

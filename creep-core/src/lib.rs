@@ -25,6 +25,7 @@ pub mod engine;
 pub mod error;
 pub mod evaluate;
 pub mod fit;
+pub mod formula;
 pub mod hertz;
 pub mod kalker;
 pub mod measure;

@@ -105,6 +105,14 @@ impl Model {
         }
     }
 
+    /// Sets the values of extra (data) columns used by formula effects (ignored by Polach).
+    pub fn set_extra(&mut self, values: &[(String, f64)]) -> Result<()> {
+        match self {
+            Model::Bristle(c) => c.set_extra(values),
+            Model::Polach { .. } => Ok(()),
+        }
+    }
+
     /// Warnings since the last call (drained).
     pub fn take_warnings(&mut self) -> Vec<String> {
         match self {

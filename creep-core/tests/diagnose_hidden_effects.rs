@@ -228,3 +228,71 @@ fn hidden_transient_response_is_found_in_time_series() {
         noise_cv(&data, sd)
     );
 }
+
+#[test]
+fn hidden_effect_of_an_extra_column_is_found_by_residuals_and_a_formula_fixes_it() {
+    // truth: the layer's shear strength falls with air humidity, an effect no catalogue entry has
+    let base = coarse("dry");
+    let truth_json = r#"{"preset": "dry", "grid": {"nx": 20, "ny": 7},
+        "formula_effects": [{"name": "humid", "target": "tau_c2", "factor": "1 - k * (humidity - 50) / 50",
+                             "params": {"k": {"value": 0.3, "min": -1, "max": 1}}}]}"#;
+    let truth = Config::from_json_str(truth_json, "truth").unwrap();
+    let sd = 0.002;
+    let mut csv = String::from("cx,f,series,v_mps,fn_kN,humidity\n");
+    let mut seed = 3;
+    for h in [30.0, 50.0, 70.0] {
+        let mut m = Model::new(&truth).unwrap();
+        m.set_extra(&[("humidity".to_string(), h)]).unwrap();
+        for i in 0..12 {
+            let cx = 0.0015 * 1.55f64.powi(i);
+            let f =
+                m.steady(&Inputs {
+                    cx,
+                    v: 10.0,
+                    fn_n: 110e3,
+                    ..Inputs::default()
+                })
+                .unwrap()
+                .f + noise(&mut seed, sd);
+            csv.push_str(&format!("{cx},{f},h{h},10,110,{h}\n"));
+        }
+    }
+    let data = Dataset::from_csv_str(&csv, "humid.csv", &Defaults::default()).unwrap();
+    let d = diagnose(&base, &data, 2, &|_| {}).unwrap();
+    assert_eq!(
+        d.correlations[0].variable, "humidity",
+        "{:?}",
+        d.correlations
+    );
+    assert!(
+        d.candidates[0].effect.starts_with("formula:"),
+        "{:#?}",
+        d.candidates
+    );
+    assert!(d.candidates[0].effect.contains("humidity"));
+    assert!(d.missing_effect.is_some(), "{}", d.verdict);
+    assert!(
+        d.candidates[0].fitted_cv_rmse_pct < 1.5 * noise_cv(&data, sd),
+        "{:?}",
+        d.candidates[0]
+    );
+    // the user writes the formula and fits its parameter from a wrong start: noise level
+    let user = Config::from_json_str(
+        &truth_json.replace("\"value\": 0.3", "\"value\": 0.0"),
+        "user",
+    )
+    .unwrap();
+    let free = vec![creep_core::fit::FreeParam::resolve(&user, "humid.k").unwrap()];
+    let r = creep_core::fit::fit_params(&user, &data, &free, 2, &|_| {}).unwrap();
+    assert!(
+        r.cv_rmse_pct_after < 1.5 * noise_cv(&data, sd),
+        "after {} %",
+        r.cv_rmse_pct_after
+    );
+    assert!(
+        (r.params[0].2 - 0.3).abs() < 4.0 * r.params[0].3 + 0.02,
+        "k = {} ± {}",
+        r.params[0].2,
+        r.params[0].3
+    );
+}

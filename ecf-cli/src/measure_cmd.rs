@@ -2,7 +2,7 @@
 
 use crate::plots::{xy_plot, Set, Style};
 use creep_core::evaluate::{compare as cmp, predict, regimes, Prediction};
-use creep_core::fit::{default_free, fit as run_fit};
+use creep_core::fit::{default_free, fit_params as run_fit, FreeParam};
 use creep_core::measure::Dataset;
 use creep_core::{params, Config, CreepError, Inputs, Model};
 use std::io::Write;
@@ -243,29 +243,22 @@ pub fn fit(
     json: bool,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let free: Vec<params::P> = match free {
+    let free: Vec<FreeParam> = match free {
         Some(list) => list
             .split(',')
-            .map(|n| {
-                params::by_name(n.trim()).ok_or_else(|| CreepError::Unknown {
-                    kind: "parameter (--free)".into(),
-                    name: n.trim().into(),
-                    accepted: params::SPECS
-                        .iter()
-                        .map(|s| s.name)
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                })
-            })
+            .map(|n| FreeParam::resolve(cfg, n.trim()))
             .collect::<Result<_, _>>()?,
-        None => default_free(cfg),
+        None => default_free(cfg)
+            .into_iter()
+            .map(FreeParam::Builtin)
+            .collect(),
     };
     let bar = indicatif::ProgressBar::new_spinner();
     bar.set_style(
         indicatif::ProgressStyle::with_template("{spinner} fitting {msg} [{elapsed}]")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
     );
-    let names: Vec<&str> = free.iter().map(|p| params::spec(*p).name).collect();
+    let names: Vec<String> = free.iter().map(|p| p.name(cfg)).collect();
     bar.set_message(names.join(", "));
     let progress = |n: usize| {
         bar.set_message(format!(

@@ -180,6 +180,7 @@ fn get_config(r: &mut R) -> Result<Config, String> {
         bound,
         grid,
         geometry,
+        formulas: Vec::new(),
     })
 }
 

@@ -322,6 +322,7 @@ pub fn default_config() -> Config {
         bound: creep_core::Bound::Elliptic,
         grid: creep_core::config::DEFAULT_GRID,
         geometry: DEFAULT_GEOMETRY,
+        formulas: Vec::new(),
     })
 }
 
