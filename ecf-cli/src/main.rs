@@ -207,6 +207,9 @@ struct ModelArgs {
     /// Parameter override NAME=VALUE (repeatable; units as in the name, see `ecf info`)
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// Value of a data column used by formula effects, NAME=VALUE (repeatable)
+    #[arg(long = "extra", value_name = "NAME=VALUE")]
+    extra: Vec<String>,
 }
 
 fn bad(field: &str, value: f64, expected: &str) -> CreepError {
@@ -297,6 +300,25 @@ impl ModelArgs {
             }
         }
         Ok(cfg)
+    }
+
+    /// A model with the extra column values set.
+    fn model(&self, cfg: &Config) -> Result<Model, CreepError> {
+        let mut m = Model::new(cfg)?;
+        let mut ex = Vec::new();
+        for e in &self.extra {
+            let (n, v) = e.split_once('=').ok_or_else(|| CreepError::Config {
+                source_name: "--extra".into(),
+                message: format!("'{e}': expected NAME=VALUE"),
+            })?;
+            let x: f64 = v.parse().map_err(|_| CreepError::Config {
+                source_name: "--extra".into(),
+                message: format!("'{e}': value is not a number"),
+            })?;
+            ex.push((n.to_string(), x));
+        }
+        m.set_extra(&ex)?;
+        Ok(m)
     }
 
     fn inputs(&self, cx: f64) -> Inputs {
@@ -401,7 +423,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
         Cmd::Curve { m, cx } => {
             let cfg = m.config()?;
             let list = parse_list(&cx)?;
-            let mut model = Model::new(&cfg)?;
+            let mut model = m.model(&cfg)?;
             writeln!(w, "cx,{OUT_HEADER}").map_err(io)?;
             for c in list {
                 let o = model.steady(&m.inputs(c)).map_err(|e| rename(e, "--cx"))?;
@@ -427,7 +449,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             if !(dt_ms.is_finite() && dt_ms > 0.0 && dt_ms <= duration_ms) {
                 return Err(bad("--dt-ms", dt_ms, "must be > 0 and <= --duration-ms"));
             }
-            let mut model = Model::new(&cfg)?;
+            let mut model = m.model(&cfg)?;
             let o = model
                 .steady(&m.inputs(cx_from))
                 .map_err(|e| rename(e, "--cx-from"))?;
@@ -465,7 +487,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                     "need >= 1 cycle and >= 4 steps per cycle",
                 ));
             }
-            let mut model = Model::new(&cfg)?;
+            let mut model = m.model(&cfg)?;
             let o = model.steady(&m.inputs(cm)).map_err(|e| rename(e, "--cm"))?;
             writeln!(w, "t_s,cx,{OUT_HEADER}").map_err(io)?;
             writeln!(w, "0,{cm},{}", out_row(&o)).map_err(io)?;
@@ -483,7 +505,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
         }
         Cmd::Field { m, cx } => {
             let cfg = m.config()?;
-            let mut model = Model::new(&cfg)?;
+            let mut model = m.model(&cfg)?;
             model.steady(&m.inputs(cx)).map_err(|e| rename(e, "--cx"))?;
             let f = model.field_y0().ok_or_else(|| CreepError::Config {
                 source_name: "--model".into(),
