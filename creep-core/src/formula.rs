@@ -208,14 +208,15 @@ impl Parser<'_> {
                         return Err(self.err("expected ')' after arguments"));
                     }
                     self.i += 1;
-                    let n =
-                        match name.as_str() {
-                            "exp" | "ln" | "sqrt" | "abs" | "tanh" => 1,
-                            "min" | "max" => 2,
-                            _ => return Err(self.err(&format!(
+                    let n = match name.as_str() {
+                        "exp" | "ln" | "sqrt" | "abs" | "tanh" => 1,
+                        "min" | "max" => 2,
+                        _ => {
+                            return Err(self.err(&format!(
                                 "unknown function '{name}' (exp, ln, sqrt, abs, tanh, min, max)"
-                            ))),
-                        };
+                            )))
+                        }
+                    };
                     if args.len() != n {
                         return Err(self.err(&format!("{name} takes {n} argument(s)")));
                     }
