@@ -72,7 +72,7 @@ fn parse() -> Result<Args, String> {
     if !(a.cx_from.is_finite() && a.cx_to.is_finite()) {
         return Err("--cx-from and --cx-to: required".into());
     }
-    if !(a.dt_ms > 0.0) {
+    if a.dt_ms.is_nan() || a.dt_ms <= 0.0 {
         return Err("--dt-ms: must be > 0".into());
     }
     if a.at_ms.is_empty() || a.at_ms.iter().any(|&t| t < 0.0) {
@@ -90,7 +90,8 @@ fn run(a: &Args) -> Result<String, String> {
         fn_n: a.fn_kn * 1e3,
         ..Inputs::default()
     };
-    let mut out = String::from("t_ms,f,x_mm,x_rail_mm,tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime\n");
+    let mut out =
+        String::from("t_ms,f,x_mm,x_rail_mm,tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime\n");
     let mut o = model.steady(&inp(a.cx_from)).map_err(|e| e.to_string())?;
     let dt = a.dt_ms * 1e-3;
     let mut want: Vec<(usize, f64)> = a
@@ -98,7 +99,7 @@ fn run(a: &Args) -> Result<String, String> {
         .iter()
         .map(|&t| ((t / a.dt_ms).round() as usize, t))
         .collect();
-    want.sort_by(|p, q| p.0.cmp(&q.0));
+    want.sort_by_key(|p| p.0);
     let last = want.last().map(|w| w.0).unwrap_or(0);
     let mut k = 0usize;
     loop {
