@@ -11,7 +11,7 @@ fn main() {
             let mut m = Model::new(&c).expect("model");
             let i = Inputs {
                 cx: 0.15,
-                v: 5.0,
+                v,
                 fn_n: 110e3,
                 ..Inputs::default()
             };
