@@ -159,6 +159,8 @@ pub struct Config {
     pub geometry: Geometry,
     /// User-written formula effects (module [`crate::formula`]).
     pub formulas: Vec<crate::formula::FormulaEffect>,
+    /// Effects written in Rust (module [`crate::custom`]).
+    pub custom: Vec<crate::custom::CustomUse>,
 }
 
 #[derive(Debug, Default, Deserialize, Serialize)]
@@ -182,6 +184,16 @@ struct RawConfig {
     geometry: Option<Map<String, Value>>,
     #[serde(default)]
     formula_effects: Option<Vec<RawFormula>>,
+    #[serde(default)]
+    custom_effects: Option<Vec<RawCustom>>,
+}
+
+#[derive(Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct RawCustom {
+    name: String,
+    #[serde(default)]
+    params: Map<String, Value>,
 }
 
 #[derive(Debug, Deserialize, Serialize)]
@@ -349,6 +361,7 @@ impl Config {
                     grid: DEFAULT_GRID,
                     geometry: DEFAULT_GEOMETRY,
                     formulas: Vec::new(),
+                    custom: Vec::new(),
                 }
             }
         };
@@ -453,7 +466,25 @@ impl Config {
                 cfg.formulas.push(fe);
             }
         }
-        if cfg.model == ModelKind::Polach && !cfg.formulas.is_empty() {
+        if let Some(list) = &raw.custom_effects {
+            for c in list {
+                let mut u = crate::custom::CustomUse::by_name(&c.name)
+                    .map_err(|e| cfg_err(src, format!("custom_effects: {e}")))?;
+                for (n, v) in &c.params {
+                    let x = param_value(src, &format!("{}.{n}", c.name), v)?;
+                    u.set(n, x)
+                        .map_err(|e| cfg_err(src, format!("custom_effects: {e}")))?;
+                }
+                if cfg.custom.iter().any(|k| k.effect.name() == c.name) {
+                    return Err(cfg_err(
+                        src,
+                        format!("custom_effects: '{}' given twice", c.name),
+                    ));
+                }
+                cfg.custom.push(u);
+            }
+        }
+        if cfg.model == ModelKind::Polach && !(cfg.formulas.is_empty() && cfg.custom.is_empty()) {
             return Err(cfg_err(
                 src,
                 "formula_effects act on the bristle engine (ecf, fastsim), not on polach".into(),
@@ -498,15 +529,24 @@ impl Config {
                 serde_json::json!({"name": f.name, "target": f.target.name(), "factor": f.source, "params": ps})
             })
             .collect();
-        serde_json::json!({
+        let mut v = serde_json::json!({
             "formula_effects": formulas,
+            "custom_effects": self.custom.iter().map(|c| {
+                let ps: Map<String, Value> = c.effect.params().iter().zip(&c.params).map(|(d, v)| (d.0.to_string(), serde_json::json!(v))).collect();
+                serde_json::json!({"name": c.effect.name(), "params": ps})
+            }).collect::<Vec<_>>(),
             "model": self.model.name(),
             "effects": self.effects.to_vec().iter().map(|e| effects::info(*e).name).collect::<Vec<_>>(),
             "params": ps,
             "bound": match self.bound { Bound::Elliptic => "elliptic", Bound::Parabolic => "parabolic" },
             "grid": self.grid,
             "geometry": geometry,
-        })
+        });
+        if self.preset != "custom" {
+            // provenance; every value is given explicitly as well
+            v["preset"] = Value::String(self.preset.clone());
+        }
+        v
     }
 
     /// True if the effect is on.

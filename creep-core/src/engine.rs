@@ -345,7 +345,8 @@ impl Contact {
             extra: Vec::new(),
             fvars: Vec::new(),
             fstatic: [1.0; 5],
-            flocal: cfg.formulas.iter().any(|f| f.local),
+            flocal: cfg.formulas.iter().any(|f| f.local)
+                || cfg.custom.iter().any(|c| c.effect.uses_local_state()),
             t_tol: {
                 let r = Resolved::from_config(cfg);
                 let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
@@ -426,7 +427,7 @@ impl Contact {
     }
 
     fn update_formula_vars(&mut self) -> Result<()> {
-        if self.cfg.formulas.is_empty() {
+        if self.cfg.formulas.is_empty() && self.cfg.custom.is_empty() {
             return Ok(());
         }
         let i = &self.inputs;
@@ -458,9 +459,48 @@ impl Contact {
                 fstatic[f.target as usize] *= f.eval(&vars).max(0.0);
             }
         }
+        for c in &self.cfg.custom {
+            for col in c.effect.columns() {
+                if !self.extra.iter().any(|(n, _)| n == col) {
+                    return Err(CreepError::Config {
+                        source_name: format!("custom_effects.{}", c.effect.name()),
+                        message: format!(
+                            "needs the column '{col}', which the data do not provide (have: {})",
+                            self.extra
+                                .iter()
+                                .map(|e| e.0.as_str())
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    });
+                }
+            }
+            if !c.effect.uses_local_state() {
+                fstatic[c.effect.target() as usize] *= c
+                    .effect
+                    .factor(
+                        &c.params,
+                        &crate::custom::LocalState::default(),
+                        &self.operating_point(),
+                    )
+                    .max(0.0);
+            }
+        }
         self.fstatic = fstatic;
         self.fvars = v;
         Ok(())
+    }
+
+    fn operating_point(&self) -> crate::custom::OperatingPoint<'_> {
+        let i = &self.inputs;
+        crate::custom::OperatingPoint {
+            v_mps: i.v,
+            fn_kn: i.fn_n / 1e3,
+            cx: i.cx,
+            cy: i.cy,
+            spin_per_m: i.spin,
+            columns: &self.extra,
+        }
     }
 
     /// Scales a material by the formula effects (local ones evaluated at this bristle).
@@ -474,7 +514,7 @@ impl Contact {
         u: f64,
         slip: f64,
     ) -> Material {
-        if self.cfg.formulas.is_empty() {
+        if self.cfg.formulas.is_empty() && self.cfg.custom.is_empty() {
             return m;
         }
         let mut fac = self.fstatic;
@@ -496,6 +536,23 @@ impl Contact {
                     );
                 }
                 fac[f.target as usize] *= f.eval(&vv).max(0.0);
+            }
+            let local = crate::custom::LocalState {
+                p_gpa: p / 1e9,
+                t_c: t,
+                u_mm: u * 1e3,
+                slip_mps: slip,
+            };
+            for c in self
+                .cfg
+                .custom
+                .iter()
+                .filter(|c| c.effect.uses_local_state())
+            {
+                fac[c.effect.target() as usize] *= c
+                    .effect
+                    .factor(&c.params, &local, &self.operating_point())
+                    .max(0.0);
             }
         }
         if coulomb {

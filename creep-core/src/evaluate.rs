@@ -70,7 +70,7 @@ fn run_job(
                     e.insert(Model::new(&config_for(cfg, r))?)
                 }
             };
-            if !cfg.formulas.is_empty() {
+            if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
                 m.set_extra(&extras(data, r))?;
             }
             let o = m.steady(&r.inputs())?;
@@ -92,7 +92,7 @@ fn run_job(
             let mut prev: Option<&Row> = None;
             for &i in idx {
                 let r = &data.rows[i];
-                if !cfg.formulas.is_empty() {
+                if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
                     m.set_extra(&extras(data, r))?;
                 }
                 let o = match prev {

@@ -20,6 +20,13 @@ use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
 pub enum FreeParam {
     /// A registry parameter.
     Builtin(P),
+    /// Parameter `param` of custom (Rust) effect `effect` (indices into `Config::custom`).
+    Custom {
+        /// Index of the custom effect.
+        effect: usize,
+        /// Index of its parameter.
+        param: usize,
+    },
     /// Parameter `param` of formula effect `effect` (indices into `Config::formulas`).
     Formula {
         /// Index of the formula effect.
@@ -44,6 +51,11 @@ impl FreeParam {
                 "{}.{}",
                 cfg.formulas[effect].name, cfg.formulas[effect].params[param].0
             ),
+            FreeParam::Custom { effect, param } => format!(
+                "{}.{}",
+                cfg.custom[effect].effect.name(),
+                cfg.custom[effect].effect.params()[param].0
+            ),
         }
     }
     /// Current value (display unit).
@@ -51,6 +63,7 @@ impl FreeParam {
         match *self {
             FreeParam::Builtin(p) => cfg.params.get(p),
             FreeParam::Formula { effect, param } => cfg.formulas[effect].params[param].1,
+            FreeParam::Custom { effect, param } => cfg.custom[effect].params[param],
         }
     }
     /// Bounds (display unit).
@@ -61,13 +74,17 @@ impl FreeParam {
                 let q = &cfg.formulas[effect].params[param];
                 (q.2, q.3)
             }
+            FreeParam::Custom { effect, param } => {
+                let q = cfg.custom[effect].effect.params()[param];
+                (q.2, q.3)
+            }
         }
     }
     /// Unit (display).
     pub fn unit(&self) -> &'static str {
         match *self {
             FreeParam::Builtin(p) => spec(p).unit,
-            FreeParam::Formula { .. } => "-",
+            FreeParam::Formula { .. } | FreeParam::Custom { .. } => "-",
         }
     }
     fn set(&self, cfg: &mut Config, v: f64) -> Result<()> {
@@ -75,6 +92,10 @@ impl FreeParam {
             FreeParam::Builtin(p) => cfg.params.set(p, v),
             FreeParam::Formula { effect, param } => {
                 cfg.formulas[effect].set_param(param, v);
+                Ok(())
+            }
+            FreeParam::Custom { effect, param } => {
+                cfg.custom[effect].params[param] = v;
                 Ok(())
             }
         }
@@ -90,6 +111,16 @@ impl FreeParam {
             for (k, q) in f.params.iter().enumerate() {
                 if name == format!("{}.{}", f.name, q.0) || name == q.0 {
                     found.push(FreeParam::Formula {
+                        effect: e,
+                        param: k,
+                    });
+                }
+            }
+        }
+        for (e, c) in cfg.custom.iter().enumerate() {
+            for (k, q) in c.effect.params().iter().enumerate() {
+                if name == format!("{}.{}", c.effect.name(), q.0) {
+                    found.push(FreeParam::Custom {
                         effect: e,
                         param: k,
                     });

@@ -19,6 +19,7 @@
 
 pub mod bristle;
 pub mod config;
+pub mod custom;
 pub mod diagnose;
 pub mod effects;
 pub mod engine;

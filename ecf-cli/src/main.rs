@@ -588,6 +588,20 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             for e in creep_core::effects::CATALOGUE {
                 writeln!(w, "  {}: {}", e.name, e.description).map_err(io)?;
             }
+            writeln!(w, "\ncustom effects written in Rust (\"custom_effects\": [{{\"name\": ..., \"params\": {{...}}}}]):").map_err(io)?;
+            for e in creep_core::custom::CATALOGUE {
+                writeln!(
+                    w,
+                    "  {} (scales {}): {}",
+                    e.name(),
+                    e.target().name(),
+                    e.description()
+                )
+                .map_err(io)?;
+                for (n, d, lo, hi, m) in e.params() {
+                    writeln!(w, "    {n}: default {d}, bounds [{lo}, {hi}], {m}").map_err(io)?;
+                }
+            }
             writeln!(w, "\nparameters (name, unit, default, bounds, meaning):").map_err(io)?;
             for s in creep_core::params::SPECS {
                 writeln!(

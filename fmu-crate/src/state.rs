@@ -181,6 +181,7 @@ fn get_config(r: &mut R) -> Result<Config, String> {
         grid,
         geometry,
         formulas: Vec::new(),
+        custom: Vec::new(),
     })
 }
 

@@ -323,6 +323,7 @@ pub fn default_config() -> Config {
         grid: creep_core::config::DEFAULT_GRID,
         geometry: DEFAULT_GEOMETRY,
         formulas: Vec::new(),
+        custom: Vec::new(),
     })
 }
 

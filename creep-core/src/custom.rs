@@ -1,0 +1,181 @@
+//! Effects written in Rust: implement [`CustomEffect`], add a static instance to [`CATALOGUE`], rebuild.
+//!
+//! A custom effect scales one material function (like a formula effect, module
+//! [`crate::formula`]) by a factor computed in Rust from its parameters, the bristle's local
+//! state and the operating point (including data columns). A configuration switches it on with
+//! `"custom_effects": [{"name": "humidity_softening", "params": {"k": 0.3}}]`; its parameters
+//! are fitted like any other (`--free humidity_softening.k`). Worked example:
+//! [`HumiditySoftening`] and docs/measurements.md.
+
+use crate::error::{CreepError, Result};
+use crate::formula::Target;
+
+/// Local state of a bristle.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LocalState {
+    /// Normal pressure, GPa.
+    pub p_gpa: f64,
+    /// Temperature, degC.
+    pub t_c: f64,
+    /// |u|, mm.
+    pub u_mm: f64,
+    /// Rigid slip speed, m/s.
+    pub slip_mps: f64,
+}
+
+/// Operating point of the contact.
+#[derive(Clone, Copy, Debug)]
+pub struct OperatingPoint<'a> {
+    /// Vehicle speed, m/s.
+    pub v_mps: f64,
+    /// Normal force, kN.
+    pub fn_kn: f64,
+    /// Longitudinal creepage, -.
+    pub cx: f64,
+    /// Lateral creepage, -.
+    pub cy: f64,
+    /// Spin, 1/m.
+    pub spin_per_m: f64,
+    /// Data columns (name, value) of the current measurement row.
+    pub columns: &'a [(String, f64)],
+}
+
+impl OperatingPoint<'_> {
+    /// Value of a data column.
+    pub fn column(&self, name: &str) -> Option<f64> {
+        self.columns
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| *v)
+    }
+}
+
+/// An effect written in Rust.
+pub trait CustomEffect: Send + Sync + std::fmt::Debug {
+    /// Name in configuration files.
+    fn name(&self) -> &'static str;
+    /// One-paragraph physical description.
+    fn description(&self) -> &'static str;
+    /// Material function it scales.
+    fn target(&self) -> Target;
+    /// Parameters: (name with unit, default, min, max, one-line meaning).
+    fn params(&self) -> &'static [(&'static str, f64, f64, f64, &'static str)];
+    /// Data columns it needs (checked before a run).
+    fn columns(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// True if the factor depends on the bristle's local state (evaluated per bristle).
+    fn uses_local_state(&self) -> bool {
+        false
+    }
+    /// The factor (>= 0) multiplying the target.
+    fn factor(&self, params: &[f64], local: &LocalState, op: &OperatingPoint) -> f64;
+}
+
+/// Worked example: the layer's shear strength falls linearly with air humidity,
+/// tau_c2 <- tau_c2 (1 - k (humidity - h0)/h0), from the data column `humidity` (%).
+#[derive(Debug)]
+pub struct HumiditySoftening;
+
+impl CustomEffect for HumiditySoftening {
+    fn name(&self) -> &'static str {
+        "humidity_softening"
+    }
+    fn description(&self) -> &'static str {
+        "Water adsorbed from humid air weakens the oxide third body layer: its shear strength tau_c2 falls linearly with the relative air humidity around a reference humidity (an example of an effect written in Rust; uses the data column 'humidity', %)."
+    }
+    fn target(&self) -> Target {
+        Target::TauC2
+    }
+    fn params(&self) -> &'static [(&'static str, f64, f64, f64, &'static str)] {
+        &[
+            (
+                "k",
+                0.0,
+                -1.0,
+                1.0,
+                "relative strength change per reference humidity, -",
+            ),
+            ("h0_pct", 50.0, 1.0, 100.0, "reference humidity, %"),
+        ]
+    }
+    fn columns(&self) -> &'static [&'static str] {
+        &["humidity"]
+    }
+    fn factor(&self, p: &[f64], _local: &LocalState, op: &OperatingPoint) -> f64 {
+        let h = op.column("humidity").unwrap_or(p[1]);
+        (1.0 - p[0] * (h - p[1]) / p[1]).max(0.0)
+    }
+}
+
+static HUMIDITY_SOFTENING: HumiditySoftening = HumiditySoftening;
+
+/// The registered Rust effects. Add yours here.
+pub static CATALOGUE: &[&dyn CustomEffect] = &[&HUMIDITY_SOFTENING];
+
+/// A custom effect switched on in a configuration, with its parameter values.
+#[derive(Clone, Debug)]
+pub struct CustomUse {
+    /// The effect.
+    pub effect: &'static dyn CustomEffect,
+    /// Parameter values, in the order of [`CustomEffect::params`].
+    pub params: Vec<f64>,
+}
+
+impl PartialEq for CustomUse {
+    fn eq(&self, other: &Self) -> bool {
+        self.effect.name() == other.effect.name() && self.params == other.params
+    }
+}
+
+impl CustomUse {
+    /// Looks an effect up by name, with default parameters.
+    pub fn by_name(name: &str) -> Result<Self> {
+        let e = CATALOGUE
+            .iter()
+            .find(|e| e.name() == name)
+            .ok_or_else(|| CreepError::Unknown {
+                kind: "custom effect".into(),
+                name: name.into(),
+                accepted: CATALOGUE
+                    .iter()
+                    .map(|e| e.name())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })?;
+        Ok(CustomUse {
+            effect: *e,
+            params: e.params().iter().map(|p| p.1).collect(),
+        })
+    }
+
+    /// Sets a parameter by name, checking its bounds.
+    pub fn set(&mut self, name: &str, v: f64) -> Result<()> {
+        let k = self
+            .effect
+            .params()
+            .iter()
+            .position(|p| p.0 == name)
+            .ok_or_else(|| CreepError::Unknown {
+                kind: format!("parameter of {}", self.effect.name()),
+                name: name.into(),
+                accepted: self
+                    .effect
+                    .params()
+                    .iter()
+                    .map(|p| p.0)
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })?;
+        let (_, _, lo, hi, _) = self.effect.params()[k];
+        if !(v.is_finite() && lo <= v && v <= hi) {
+            return Err(CreepError::OutOfRange {
+                field: format!("{}.{name}", self.effect.name()),
+                value: v,
+                expected: format!("must be within [{lo}, {hi}]"),
+            });
+        }
+        self.params[k] = v;
+        Ok(())
+    }
+}
