@@ -321,9 +321,10 @@ def sines_checks(n, S):
 
     return [
         Check("4.22-limit-cycle",
-              "under periodic creepage the traction becomes periodic and settles on a limit cycle",
-              "RMS difference between the last two periods, relative to the f range: " + ", ".join(f"{k} {100 * r['periodicity_rms_rel']:.2f} %" for k, r in R.items()) + " (assert < 2 % for each)",
-              all(r["periodicity_rms_rel"] < 0.02 for r in R.values())),
+              "under periodic creepage the traction becomes periodic and quickly approaches a limit cycle (the seed: within about 1 ms)",
+              "RMS difference between the last two periods, relative to the f range: " + ", ".join(f"{k} {100 * r['periodicity_rms_rel']:.2f} %" for k, r in R.items())
+              + "; between the first and the last period: at most " + f"{100 * max(r['first_cycle_rms_rel'] for r in R.values()):.1f} % (assert < 2 % and < 5 %: the first period is already close to the limit cycle; the output does not resolve the seed's 1 ms further)",
+              all(r["periodicity_rms_rel"] < 0.02 and r["first_cycle_rms_rel"] < 0.05 for r in R.values())),
         Check("4.22-hysteresis-from-temperature",
               "with c_m = 20 %, c_A = 10 % (both extremes in R3) the hysteresis comes mainly from the time dependence of the temperature model",
               f"loop area {g(a['loop_area'], 3)} (negative: clockwise in the c_x-f plane); with the temperature switched off the same creepage gives {g(nt['loop_area'], 3)} (assert the loop runs the other way without temperature, i.e. the thermal lag sets its sense)",
