@@ -763,6 +763,26 @@ impl Contact {
         } else {
             0.0
         };
+        // Elastic-release heat (the -L dtau part of Eq. 4.29) caused by the sub-step's own
+        // self-heating feeds back on the temperature with a gain of about
+        // self_c |tau|^2 (L_x + L_e) X_T / h, which grows like 1/sqrt(h): below ~1 us the
+        // implicit solve would run away (the half-space kernel has no heat capacity of the
+        // layer to stop it). That part of the release is weighted by theta = min(1, 0.8/gain):
+        // fully implicit while the sub-step's temperature equation is a contraction with
+        // margin (gain < 0.8), damped only for tiny sub-steps (docs/model.md, section 6).
+        let release_ref: std::cell::Cell<Option<[f64; 2]>> = std::cell::Cell::new(None);
+        let theta = if k.heat && self.r.temperature {
+            let cmax = self.r.tc1_t.max(self.r.tc2_t).max(self.r.lp_t);
+            let t0 = old.tau[0].hypot(old.tau[1]).max(1.0);
+            let gain = self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * cmax / k.h;
+            if gain > 0.8 {
+                0.8 / gain
+            } else {
+                1.0
+            }
+        } else {
+            1.0
+        };
         let eval = |t: f64| -> (BristleState, f64) {
             let m = self.material(np, t, u_abs, slip);
             let lxe = k.lx + m.le;
@@ -775,8 +795,18 @@ impl Contact {
             let mut ns = old;
             bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule);
             let q = if k.heat {
-                let dux = du[0] - lxe * (ns.tau[0] - old.tau[0]);
-                let duy = du[1] - lye * (ns.tau[1] - old.tau[1]);
+                let tr = match release_ref.get() {
+                    Some(r) => [
+                        r[0] + theta * (ns.tau[0] - r[0]),
+                        r[1] + theta * (ns.tau[1] - r[1]),
+                    ],
+                    None => {
+                        release_ref.set(Some(ns.tau));
+                        ns.tau
+                    }
+                };
+                let dux = du[0] - lxe * (tr[0] - old.tau[0]);
+                let duy = du[1] - lye * (tr[1] - old.tau[1]);
                 (self.r.kq * (ns.tau[0] * dux + ns.tau[1] * duy) / k.h).max(0.0)
             } else {
                 0.0
@@ -1346,6 +1376,25 @@ pub fn regime_name(r: Regime) -> &'static str {
         Regime::Elastic => "elastic",
         Regime::Plastic => "plastic",
         Regime::Sliding => "sliding",
+    }
+}
+
+/// The layer's material alone at normal stress `p` (Pa) and temperature `t` (degC), from
+/// the configuration's parameters and effects (Eq. 4.3, 4.4; formula effects not applied).
+pub fn layer_material(cfg: &Config, p: f64, t: f64) -> Material {
+    let r = Resolved::from_config(cfg);
+    let le = if r.layer_el {
+        r.le0 / r.pf(p, r.le_p) / r.tf(t, r.le_t)
+    } else {
+        0.0
+    };
+    let tc2 = r.tc20 * r.pf(p, r.tc2_p) * r.tf(t, r.tc2_t);
+    let tc1 = (r.tc10 * r.pf(p, r.tc1_p) * r.tf(t, r.tc1_t)).min(tc2);
+    Material {
+        tc1,
+        tc2,
+        lp: r.lp0 / r.pf(p, r.lp_p) / r.tf(t, r.lp_t),
+        le,
     }
 }
 

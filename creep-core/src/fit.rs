@@ -237,13 +237,16 @@ impl Map {
     }
 }
 
+/// Model values for the measured points under a configuration.
+pub type ModelFn<'a> = &'a (dyn Fn(&Config) -> Result<Vec<f64>> + Sync);
+
 struct Problem<'a> {
     base: Config,
-    data: &'a Dataset,
+    meas: Vec<f64>,
+    model: ModelFn<'a>,
     free: Vec<FreeParam>,
     maps: Vec<Map>,
     z: DVector<f64>,
-    threads: usize,
     progress: &'a (dyn Fn(usize) + Sync),
     evals: std::cell::Cell<usize>,
     error: std::cell::RefCell<Option<CreepError>>,
@@ -263,13 +266,11 @@ impl Problem<'_> {
         let n = self.evals.get() + 1;
         self.evals.set(n);
         (self.progress)(n);
-        let r = self
-            .config_at(z)
-            .and_then(|c| predict(&c, self.data, self.threads));
+        let r = self.config_at(z).and_then(|c| (self.model)(&c));
         match r {
             Ok(p) => Some(DVector::from_iterator(
                 p.len(),
-                p.iter().zip(&self.data.rows).map(|(p, r)| p.f - r.f),
+                p.iter().zip(&self.meas).map(|(m, y)| m - y),
             )),
             Err(e) => {
                 *self.error.borrow_mut() = Some(e);
@@ -327,18 +328,34 @@ pub fn fit_params(
     threads: usize,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<FitResult> {
+    let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
+    let model = |c: &Config| -> Result<Vec<f64>> {
+        Ok(predict(c, data, threads)?.iter().map(|p| p.f).collect())
+    };
+    fit_generic(cfg, &data.source, &meas, &model, free, progress)
+}
+
+/// Bounded least squares of `model(cfg)` against `meas` over the free parameters.
+pub fn fit_generic(
+    cfg: &Config,
+    source: &str,
+    meas: &[f64],
+    model: ModelFn,
+    free: &[FreeParam],
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<FitResult> {
     if free.is_empty() {
         return Err(CreepError::Config {
             source_name: "--free".into(),
             message: "no parameter to fit".into(),
         });
     }
-    if data.rows.len() <= free.len() {
+    if meas.len() <= free.len() {
         return Err(CreepError::Config {
-            source_name: data.source.clone(),
+            source_name: source.into(),
             message: format!(
                 "{} rows cannot determine {} parameters",
-                data.rows.len(),
+                meas.len(),
                 free.len()
             ),
         });
@@ -350,16 +367,15 @@ pub fn fit_params(
         .map(|(id, s)| Map::new(id.bounds(cfg), *s))
         .collect();
     let z0 = DVector::from_iterator(free.len(), maps.iter().zip(&start).map(|(m, s)| m.to_z(*s)));
-    let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
-    let before = predict(cfg, data, threads)?;
-    let cv_before = cv_rmse_pct(&meas, &before.iter().map(|p| p.f).collect::<Vec<_>>());
+    let before = model(cfg)?;
+    let cv_before = cv_rmse_pct(meas, &before);
     let problem = Problem {
         base: cfg.clone(),
-        data,
+        meas: meas.to_vec(),
+        model,
         free: free.to_vec(),
         maps: maps.clone(),
         z: z0,
-        threads,
         progress,
         evals: std::cell::Cell::new(0),
         error: std::cell::RefCell::new(None),
@@ -372,9 +388,8 @@ pub fn fit_params(
     }
     let z = problem.z.clone();
     let fitted = problem.config_at(&z)?;
-    let after = predict(&fitted, data, threads)?;
-    let model: Vec<f64> = after.iter().map(|p| p.f).collect();
-    let cv_after = cv_rmse_pct(&meas, &model);
+    let model_values: Vec<f64> = model(&fitted)?;
+    let cv_after = cv_rmse_pct(meas, &model_values);
     // covariance in parameter units
     let jz = problem
         .jacobian()
@@ -388,7 +403,7 @@ pub fn fit_params(
     let n = meas.len();
     let rss: f64 = meas
         .iter()
-        .zip(&model)
+        .zip(&model_values)
         .map(|(a, b)| (a - b) * (a - b))
         .sum();
     let s2 = rss / (n - free.len()) as f64;

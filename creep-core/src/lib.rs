@@ -28,6 +28,7 @@ pub mod evaluate;
 pub mod fit;
 pub mod formula;
 pub mod hertz;
+pub mod hpt;
 pub mod kalker;
 pub mod measure;
 pub mod model;
