@@ -140,6 +140,15 @@ struct DataArgs {
 
 impl DataArgs {
     fn load(&self) -> Result<(Config, creep_core::measure::Dataset), CreepError> {
+        let cfg = self.config_only()?;
+        let data = creep_core::measure::Dataset::from_file(
+            &self.data,
+            &creep_core::measure::Defaults::default(),
+        )?;
+        Ok((cfg, data))
+    }
+
+    fn config_only(&self) -> Result<Config, CreepError> {
         let mut cfg = match (&self.config, &self.preset) {
             (Some(p), None) => Config::from_file(p)?,
             (None, Some(p)) => Config::preset(p)?,
@@ -153,11 +162,7 @@ impl DataArgs {
         if let Some(g) = &self.grid {
             cfg.grid = Grid::parse(g)?;
         }
-        let data = creep_core::measure::Dataset::from_file(
-            &self.data,
-            &creep_core::measure::Defaults::default(),
-        )?;
-        Ok((cfg, data))
+        Ok(cfg)
     }
 }
 
@@ -535,6 +540,14 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                 .map_err(io)?;
             }
             warn(&mut model);
+        }
+        Cmd::Compare { d, json, plots } if measure_cmd::is_hpt(&d.data) => {
+            let cfg = d.config_only()?;
+            measure_cmd::compare_hpt(&cfg, &d.data, json, plots.as_deref(), &mut w)?;
+        }
+        Cmd::Fit { d, free, out, json } if measure_cmd::is_hpt(&d.data) => {
+            let cfg = d.config_only()?;
+            measure_cmd::fit_hpt(&cfg, &d.data, free.as_deref(), &out, json, &mut w)?;
         }
         Cmd::Compare { d, json, plots } => {
             let (cfg, data) = d.load()?;

@@ -531,3 +531,192 @@ pub fn report(
     })?;
     Ok(())
 }
+
+/// True if the file's header has the high-pressure-torsion columns (p_MPa, u_mm, tau_MPa).
+pub fn is_hpt(path: &Path) -> bool {
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| !l.trim_start().starts_with('#'))
+                .map(|h| {
+                    let cols: Vec<&str> = h.split(',').map(|c| c.trim()).collect();
+                    ["p_MPa", "u_mm", "tau_MPa"]
+                        .iter()
+                        .all(|c| cols.contains(c))
+                })
+        })
+        .unwrap_or(false)
+}
+
+fn read_hpt_file(path: &Path) -> Result<Vec<creep_core::measure::HptRow>, CreepError> {
+    let text = std::fs::read_to_string(path).map_err(|e| CreepError::Config {
+        source_name: path.display().to_string(),
+        message: format!("cannot read: {e}"),
+    })?;
+    creep_core::measure::read_hpt(&text, &path.display().to_string())
+}
+
+/// Compares the layer model with high-pressure-torsion curves (seed Sec. 5.1).
+pub fn compare_hpt(
+    cfg: &Config,
+    path: &Path,
+    json: bool,
+    plots: Option<&Path>,
+    w: &mut Vec<u8>,
+) -> Result<(), CreepError> {
+    let rows = read_hpt_file(path)?;
+    let model = creep_core::hpt::predict(cfg, &rows);
+    let mut series: Vec<String> = Vec::new();
+    for r in &rows {
+        if !series.contains(&r.series) {
+            series.push(r.series.clone());
+        }
+    }
+    let idx_of =
+        |s: &str| -> Vec<usize> { (0..rows.len()).filter(|&i| rows[i].series == s).collect() };
+    let per: Vec<(String, f64)> = series
+        .iter()
+        .map(|s| {
+            let idx = idx_of(s);
+            (
+                s.clone(),
+                creep_core::measure::cv_rmse_pct(
+                    &idx.iter().map(|&i| rows[i].tau).collect::<Vec<_>>(),
+                    &idx.iter().map(|&i| model[i]).collect::<Vec<_>>(),
+                ),
+            )
+        })
+        .collect();
+    let overall = creep_core::hpt::cv_rmse(cfg, &rows);
+    if let Some(dir) = plots {
+        std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
+            source_name: dir.display().to_string(),
+            message: e.to_string(),
+        })?;
+        let labels: Vec<(String, String)> = series
+            .iter()
+            .map(|s| (format!("{s} measured"), format!("{s} model")))
+            .collect();
+        let mut sets = Vec::new();
+        for (k, s) in series.iter().enumerate() {
+            let idx = idx_of(s);
+            sets.push(Set {
+                label: &labels[k].0,
+                xy: idx
+                    .iter()
+                    .map(|&i| (rows[i].u * 1e3, rows[i].tau / 1e6))
+                    .collect(),
+                style: Style::Points,
+                color: k,
+            });
+            sets.push(Set {
+                label: &labels[k].1,
+                xy: idx
+                    .iter()
+                    .map(|&i| (rows[i].u * 1e3, model[i] / 1e6))
+                    .collect(),
+                style: Style::Line,
+                color: k,
+            });
+        }
+        xy_plot(
+            &dir.join("hpt.png"),
+            "high-pressure torsion: layer alone (seed Sec. 5.1)",
+            "displacement u (mm)",
+            "shear stress tau (MPa)",
+            &sets,
+        )
+        .map_err(|m| CreepError::Config {
+            source_name: "--plots".into(),
+            message: m,
+        })?;
+    }
+    if json {
+        let v = serde_json::json!({"cv_rmse_pct": overall, "n": rows.len(), "groups": per.iter().map(|(s, c)| serde_json::json!({"by": "series", "value": s, "cv_rmse_pct": c})).collect::<Vec<_>>()});
+        writeln!(
+            w,
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(|e| CreepError::State(e.to_string()))?
+        )
+        .map_err(io)?;
+    } else {
+        writeln!(
+            w,
+            "HPT data {} ({} rows): CV(RMSE) = {overall:.2} %",
+            path.display(),
+            rows.len()
+        )
+        .map_err(io)?;
+        for (s, c) in per {
+            writeln!(w, "  series {s:<16} {c:8.2} %").map_err(io)?;
+        }
+    }
+    Ok(())
+}
+
+/// Fits the layer parameters to high-pressure-torsion curves (written atomically).
+pub fn fit_hpt(
+    cfg: &Config,
+    path: &Path,
+    free: Option<&str>,
+    out: &Path,
+    json: bool,
+    w: &mut Vec<u8>,
+) -> Result<(), CreepError> {
+    let rows = read_hpt_file(path)?;
+    let free: Vec<FreeParam> = match free {
+        Some(list) => list
+            .split(',')
+            .map(|n| FreeParam::resolve(cfg, n.trim()))
+            .collect::<Result<_, _>>()?,
+        None => creep_core::hpt::default_free()
+            .into_iter()
+            .map(FreeParam::Builtin)
+            .collect(),
+    };
+    let r = creep_core::hpt::fit(cfg, &path.display().to_string(), &rows, &free, &|_| {})?;
+    let text = serde_json::to_string_pretty(&r.config.to_json())
+        .map_err(|e| CreepError::State(e.to_string()))?
+        + "\n";
+    let tmp = out.with_extension("json.tmp");
+    std::fs::write(&tmp, text).map_err(|e| CreepError::Config {
+        source_name: tmp.display().to_string(),
+        message: format!("cannot write: {e}"),
+    })?;
+    std::fs::rename(&tmp, out).map_err(|e| CreepError::Config {
+        source_name: out.display().to_string(),
+        message: format!("cannot write: {e}"),
+    })?;
+    if json {
+        let params: serde_json::Map<String, serde_json::Value> = r
+            .params
+            .iter()
+            .map(|(n, _, v, _)| (n.clone(), serde_json::json!(v)))
+            .collect();
+        let stderr: serde_json::Map<String, serde_json::Value> = r
+            .params
+            .iter()
+            .map(|(n, _, _, s)| (n.clone(), serde_json::json!(s)))
+            .collect();
+        let v = serde_json::json!({"cv_rmse_pct_before": r.cv_rmse_pct_before, "cv_rmse_pct_after": r.cv_rmse_pct_after, "params": params, "stderr": stderr, "out": out.display().to_string()});
+        writeln!(
+            w,
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(|e| CreepError::State(e.to_string()))?
+        )
+        .map_err(io)?;
+    } else {
+        writeln!(
+            w,
+            "HPT fit: CV(RMSE) {:.2} % -> {:.2} %",
+            r.cv_rmse_pct_before, r.cv_rmse_pct_after
+        )
+        .map_err(io)?;
+        for (n, s, v, se) in &r.params {
+            writeln!(w, "  {n:<22} {s:>12.6} -> {v:>12.6} ± {se:.2e}").map_err(io)?;
+        }
+        writeln!(w, "fitted configuration written to {}", out.display()).map_err(io)?;
+    }
+    Ok(())
+}

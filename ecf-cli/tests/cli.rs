@@ -288,3 +288,42 @@ fn compare_and_fit_on_a_generated_file() {
     assert_ne!(code, 0);
     assert!(err.contains("tau_c9"), "{err}");
 }
+
+#[test]
+fn hpt_files_are_compared_and_fitted() {
+    let dir = std::env::temp_dir().join(format!("ecf-cli-hpt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let data = dir.join("hpt.csv");
+    std::fs::write(&data, "p_MPa,u_mm,tau_MPa,series\n500,0.1,150,a\n500,0.3,250,a\n500,0.6,300,a\n500,1.0,320,a\n1000,0.1,200,b\n1000,0.3,330,b\n1000,0.6,400,b\n1000,1.0,430,b\n").unwrap();
+    let (code, out, err) = ecf(&[
+        "compare",
+        data.to_str().unwrap(),
+        "--preset",
+        "dry",
+        "--json",
+        "--plots",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let before = v["cv_rmse_pct"].as_f64().unwrap();
+    assert!(dir.join("hpt.png").exists());
+    let (code, out, err) = ecf(&[
+        "fit",
+        data.to_str().unwrap(),
+        "--preset",
+        "dry",
+        "--out",
+        dir.join("f.json").to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let r: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!((r["cv_rmse_pct_before"].as_f64().unwrap() - before).abs() < 1e-9);
+    assert!(r["cv_rmse_pct_after"].as_f64().unwrap() < 0.2 * before);
+    // a bad HPT file names line and column
+    std::fs::write(&data, "p_MPa,u_mm,tau_MPa\n500,x,150\n").unwrap();
+    let (code, _, err) = ecf(&["compare", data.to_str().unwrap(), "--preset", "dry"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("line 2") && err.contains("u_mm"), "{err}");
+}
