@@ -269,71 +269,7 @@ pub fn fit(
     };
     let r = run_fit(cfg, data, &free, threads, &progress)?;
     bar.finish_and_clear();
-    // write atomically: a temporary file next to the target, then rename
-    let text = serde_json::to_string_pretty(&r.config.to_json())
-        .map_err(|e| CreepError::State(e.to_string()))?
-        + "\n";
-    let tmp = out.with_extension("json.tmp");
-    std::fs::write(&tmp, text).map_err(|e| CreepError::Config {
-        source_name: tmp.display().to_string(),
-        message: format!("cannot write: {e}"),
-    })?;
-    std::fs::rename(&tmp, out).map_err(|e| CreepError::Config {
-        source_name: out.display().to_string(),
-        message: format!("cannot write: {e}"),
-    })?;
-    if json {
-        let params: serde_json::Map<String, serde_json::Value> = r
-            .params
-            .iter()
-            .map(|(n, _, v, _)| (n.clone(), serde_json::json!(v)))
-            .collect();
-        let stderr: serde_json::Map<String, serde_json::Value> = r
-            .params
-            .iter()
-            .map(|(n, _, _, s)| (n.clone(), serde_json::json!(s)))
-            .collect();
-        let start: serde_json::Map<String, serde_json::Value> = r
-            .params
-            .iter()
-            .map(|(n, s, _, _)| (n.clone(), serde_json::json!(s)))
-            .collect();
-        let v = serde_json::json!({
-            "cv_rmse_pct_before": r.cv_rmse_pct_before,
-            "cv_rmse_pct_after": r.cv_rmse_pct_after,
-            "params": params,
-            "stderr": stderr,
-            "start": start,
-            "free": names,
-            "correlation": r.correlation,
-            "evaluations": r.evaluations,
-            "termination": r.termination,
-            "out": out.display().to_string(),
-        });
-        writeln!(
-            w,
-            "{}",
-            serde_json::to_string_pretty(&v).map_err(|e| CreepError::State(e.to_string()))?
-        )
-        .map_err(io)?;
-    } else {
-        writeln!(
-            w,
-            "CV(RMSE) {:.2} % -> {:.2} % ({} model evaluations, {})",
-            r.cv_rmse_pct_before, r.cv_rmse_pct_after, r.evaluations, r.termination
-        )
-        .map_err(io)?;
-        for (n, s, v, se) in &r.params {
-            writeln!(
-                w,
-                "  {n:<22} {s:>12.6} -> {v:>12.6} ± {se:.2e} {}",
-                params::spec(params::by_name(n).unwrap_or(params::P::Mu)).unit
-            )
-            .map_err(io)?;
-        }
-        writeln!(w, "fitted configuration written to {}", out.display()).map_err(io)?;
-    }
-    Ok(())
+    report_fit(&r, out, json, w)
 }
 
 /// Diagnoses and reports.
@@ -676,6 +612,16 @@ pub fn fit_hpt(
             .collect(),
     };
     let r = creep_core::hpt::fit(cfg, &path.display().to_string(), &rows, &free, &|_| {})?;
+    report_fit(&r, out, json, w)
+}
+
+/// Writes the fitted configuration atomically (temporary file, then rename) and reports the fit.
+fn report_fit(
+    r: &creep_core::fit::FitResult,
+    out: &Path,
+    json: bool,
+    w: &mut Vec<u8>,
+) -> Result<(), CreepError> {
     let text = serde_json::to_string_pretty(&r.config.to_json())
         .map_err(|e| CreepError::State(e.to_string()))?
         + "\n";
@@ -689,34 +635,55 @@ pub fn fit_hpt(
         message: format!("cannot write: {e}"),
     })?;
     if json {
-        let params: serde_json::Map<String, serde_json::Value> = r
-            .params
-            .iter()
-            .map(|(n, _, v, _)| (n.clone(), serde_json::json!(v)))
-            .collect();
-        let stderr: serde_json::Map<String, serde_json::Value> = r
-            .params
-            .iter()
-            .map(|(n, _, _, s)| (n.clone(), serde_json::json!(s)))
-            .collect();
-        let v = serde_json::json!({"cv_rmse_pct_before": r.cv_rmse_pct_before, "cv_rmse_pct_after": r.cv_rmse_pct_after, "params": params, "stderr": stderr, "out": out.display().to_string()});
+        let map = |k: usize| -> serde_json::Map<String, serde_json::Value> {
+            r.params
+                .iter()
+                .map(|p| (p.0.clone(), serde_json::json!([p.1, p.2, p.3][k])))
+                .collect()
+        };
+        let v = serde_json::json!({
+            "cv_rmse_pct_before": r.cv_rmse_pct_before,
+            "cv_rmse_pct_after": r.cv_rmse_pct_after,
+            "params": map(1),
+            "stderr": map(2),
+            "start": map(0),
+            "free": r.params.iter().map(|p| p.0.clone()).collect::<Vec<_>>(),
+            "correlation": r.correlation,
+            "evaluations": r.evaluations,
+            "termination": r.termination,
+            "out": out.display().to_string(),
+        });
         writeln!(
             w,
             "{}",
             serde_json::to_string_pretty(&v).map_err(|e| CreepError::State(e.to_string()))?
         )
         .map_err(io)?;
-    } else {
+        return Ok(());
+    }
+    writeln!(
+        w,
+        "CV(RMSE) {:.2} % -> {:.2} % ({} model evaluations, {})",
+        r.cv_rmse_pct_before, r.cv_rmse_pct_after, r.evaluations, r.termination
+    )
+    .map_err(io)?;
+    for (n, s, v, se) in &r.params {
+        let sp = params::by_name(n).map(params::spec);
+        let unit = sp.map(|s| s.unit).unwrap_or("-");
+        let at_bound = sp
+            .map(|sp| *v <= sp.min * (1.0 + 1e-6) || *v >= sp.max * (1.0 - 1e-6))
+            .unwrap_or(false);
+        let note = if at_bound || !se.is_finite() {
+            "  (at a bound or not identifiable from these data)"
+        } else {
+            ""
+        };
         writeln!(
             w,
-            "HPT fit: CV(RMSE) {:.2} % -> {:.2} %",
-            r.cv_rmse_pct_before, r.cv_rmse_pct_after
+            "  {n:<22} {s:>12.6} -> {v:>12.6} ± {se:.2e} {unit}{note}"
         )
         .map_err(io)?;
-        for (n, s, v, se) in &r.params {
-            writeln!(w, "  {n:<22} {s:>12.6} -> {v:>12.6} ± {se:.2e}").map_err(io)?;
-        }
-        writeln!(w, "fitted configuration written to {}", out.display()).map_err(io)?;
     }
+    writeln!(w, "fitted configuration written to {}", out.display()).map_err(io)?;
     Ok(())
 }
