@@ -927,60 +927,72 @@ impl Contact {
         end: usize,
     ) {
         let nx = self.nx;
-        let a = self.patch.a;
-        let b = self.patch.b;
         let dxi = 2.0 * self.ell[j] / nx as f64;
-        let eta = self.eta[j];
-        let y = if self.patch.line { 0.0 } else { eta * b };
         let kin = self.kin(h, dist);
-        let fac = if self.r.temperature && kin.heat {
-            self.kernel.step_factors(h)
-        } else {
-            ([1.0; N_KERNEL], [h; N_KERNEL])
-        };
+        let fac = self.factors(h, kin.heat);
         let inside = if phase_end > 0.0 { nx } else { nx + 1 };
         // update in place (the state vectors are moved out so `self` stays borrowable)
         let mut st = std::mem::take(&mut self.st);
         let mut accs = std::mem::take(&mut self.acc);
         for slot in skip..inside.min(end) {
             let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
-            // material at the end of the sub-step (Eq. 4.5), but never closer to the trailing
-            // edge than half a cell: the last node stands for the last cell (docs/model.md)
-            let x_mid = a * (xi + 0.5 * dist / a);
-            let np = self.node_p(xi.max(-self.ell[j] + 0.5 * dxi), eta);
             let id = self.idx(j, slot);
-            self.update_bristle(&kin, &np, [x_mid, y], &mut st[id], &mut accs[id], &fac);
+            self.move_bristle(j, xi, &kin, &fac, &mut st[id], &mut accs[id]);
         }
         self.st = st;
         self.acc = accs;
+    }
+
+    /// Kernel factors of a sub-step of length `h` (identity when no heat flows).
+    fn factors(&self, h: f64, heat: bool) -> ([f64; N_KERNEL], [f64; N_KERNEL]) {
+        if self.r.temperature && heat {
+            self.kernel.step_factors(h)
+        } else {
+            ([1.0; N_KERNEL], [h; N_KERNEL])
+        }
+    }
+
+    /// Moves one bristle of strip `j` over `kin.dist` to its end position `xi_end`
+    /// (normalized). The material is taken at the end of the sub-step (Eq. 4.5), but never
+    /// closer to the trailing edge than half a cell: the last node stands for the last cell
+    /// (docs/model.md); the spin lever arm is the path's midpoint.
+    #[inline]
+    fn move_bristle(
+        &self,
+        j: usize,
+        xi_end: f64,
+        kin: &Kin,
+        fac: &([f64; N_KERNEL], [f64; N_KERNEL]),
+        s: &mut BristleState,
+        acc: &mut [f64; N_KERNEL],
+    ) {
+        let a = self.patch.a;
+        let dxi = 2.0 * self.ell[j] / self.nx as f64;
+        let y = if self.patch.line {
+            0.0
+        } else {
+            self.eta[j] * self.patch.b
+        };
+        let x_mid = a * (xi_end + 0.5 * kin.dist / a);
+        let np = self.node_p(xi_end.max(-self.ell[j] + 0.5 * dxi), self.eta[j]);
+        self.update_bristle(kin, &np, [x_mid, y], s, acc, fac);
     }
 
     /// States of the `count` bristles that entered strip `j` during the current step: the one
     /// in slot k made k full cell moves, then the final partial move `d_end` (m) that ends at
     /// the strip's phase. Same updates, positions and sub-step lengths as the sub-step loop.
     fn march_new(&mut self, j: usize, count: usize, d_end: f64) {
-        let a = self.patch.a;
         let v = self.inputs.v;
-        let dx = 2.0 * self.ell[j] * a / self.nx as f64;
+        let dx = 2.0 * self.ell[j] * self.patch.a / self.nx as f64;
         let dxi = 2.0 * self.ell[j] / self.nx as f64;
-        let eta = self.eta[j];
-        let y = if self.patch.line {
-            0.0
-        } else {
-            eta * self.patch.b
-        };
         let phase_end = self.phase[j];
-        let factors = |h: f64, heat: bool| {
-            if self.r.temperature && heat {
-                self.kernel.step_factors(h)
-            } else {
-                ([1.0; N_KERNEL], [h; N_KERNEL])
-            }
-        };
-        let kin_full = self.kin(dx / v, dx);
-        let fac_full = factors(dx / v, kin_full.heat);
-        let kin_part = self.kin(d_end / v, d_end);
-        let fac_part = factors(d_end / v, kin_part.heat);
+        // With v = 0 (the steady march at standstill) the march is over distance only and
+        // carries no heat: the v -> 0 limit.
+        let time = |d: f64| if v > V_STANDSTILL { d / v } else { 0.0 };
+        let kin_full = self.kin(time(dx), dx);
+        let fac_full = self.factors(time(dx), kin_full.heat);
+        let kin_part = self.kin(time(d_end), d_end);
+        let fac_part = self.factors(time(d_end), kin_part.heat);
         let mut s = BristleState {
             temp: self.inputs.t_bulk,
             ..BristleState::default()
@@ -990,11 +1002,15 @@ impl Contact {
             let id = self.idx(j, k);
             // slot nx is past the trailing edge once the phase is > 0: not moved (as in the loop)
             if d_end > 0.0 && k < self.nx {
-                let xi = self.ell[j] - (k as f64 + phase_end) * dxi;
-                let x_mid = a * (xi + 0.5 * d_end / a);
-                let np = self.node_p(xi.max(-self.ell[j] + 0.5 * dxi), eta);
                 let (mut ps, mut pacc) = (s, acc);
-                self.update_bristle(&kin_part, &np, [x_mid, y], &mut ps, &mut pacc, &fac_part);
+                self.move_bristle(
+                    j,
+                    self.ell[j] - (k as f64 + phase_end) * dxi,
+                    &kin_part,
+                    &fac_part,
+                    &mut ps,
+                    &mut pacc,
+                );
                 self.st[id] = ps;
                 self.acc[id] = pacc;
             } else {
@@ -1002,10 +1018,14 @@ impl Contact {
                 self.acc[id] = acc;
             }
             if k + 1 < count {
-                let xi = self.ell[j] - (k as f64 + 1.0) * dxi;
-                let x_mid = a * (xi + 0.5 * dx / a);
-                let np = self.node_p(xi.max(-self.ell[j] + 0.5 * dxi), eta);
-                self.update_bristle(&kin_full, &np, [x_mid, y], &mut s, &mut acc, &fac_full);
+                self.move_bristle(
+                    j,
+                    self.ell[j] - (k as f64 + 1.0) * dxi,
+                    &kin_full,
+                    &fac_full,
+                    &mut s,
+                    &mut acc,
+                );
             }
         }
     }
@@ -1138,43 +1158,13 @@ impl Contact {
         if inputs.fn_n <= 0.0 {
             return Ok(self.lift_off());
         }
-        let a = self.patch.a;
-        let v = inputs.v;
+        // the steady state is the grid a transient run reaches with constant inputs: every
+        // bristle entered under these inputs, i.e. the march of newly entered bristles over
+        // the whole strip at phase 0
         for j in 0..self.ny {
             self.head[j] = 0;
             self.phase[j] = 0.0;
-            let dx = 2.0 * self.ell[j] * a / self.nx as f64;
-            // With v = 0 the march is over distance only (no heat): the v -> 0 limit.
-            let h = if v > V_STANDSTILL { dx / v } else { 0.0 };
-            let kin = self.kin(h, dx);
-            let fac = if self.r.temperature && kin.heat {
-                self.kernel.step_factors(h)
-            } else {
-                ([1.0; N_KERNEL], [h; N_KERNEL])
-            };
-            let dxi = 2.0 * self.ell[j] / self.nx as f64;
-            let eta = self.eta[j];
-            let y = if self.patch.line {
-                0.0
-            } else {
-                eta * self.patch.b
-            };
-            let mut s = BristleState {
-                temp: inputs.t_bulk,
-                ..BristleState::default()
-            };
-            let mut acc = [0.0; N_KERNEL];
-            let base = j * (self.nx + 1);
-            self.st[base] = s;
-            self.acc[base] = acc;
-            for slot in 1..=self.nx {
-                let xi = self.ell[j] - slot as f64 * dxi;
-                let x_mid = a * (xi + 0.5 * dx / a);
-                let np = self.node_p(xi.max(-self.ell[j] + 0.5 * dxi), eta);
-                self.update_bristle(&kin, &np, [x_mid, y], &mut s, &mut acc, &fac);
-                self.st[base + slot] = s;
-                self.acc[base + slot] = acc;
-            }
+            self.march_new(j, self.nx + 1, 0.0);
         }
         self.out = self.integrate();
         Ok(self.out)
