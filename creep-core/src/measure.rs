@@ -124,39 +124,7 @@ impl Dataset {
 
     /// Parses measurement CSV text; `src` names it in error messages.
     pub fn from_csv_str(text: &str, src: &str, defaults: &Defaults) -> Result<Self> {
-        let mut rdr = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .comment(Some(b'#'))
-            .from_reader(text.as_bytes());
-        let header: Vec<String> = rdr
-            .headers()
-            .map_err(|e| err(src, 1, "-", format!("bad header: {e}")))?
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
-        for (i, h) in header.iter().enumerate() {
-            if h.is_empty() {
-                return Err(err(
-                    src,
-                    1,
-                    &format!("#{}", i + 1),
-                    "empty column name".into(),
-                ));
-            }
-            if header[..i].contains(h) {
-                return Err(err(src, 1, h, "duplicate column".into()));
-            }
-        }
-        for req in ["cx", "f"] {
-            if !header.iter().any(|h| h == req) {
-                return Err(err(
-                    src,
-                    1,
-                    req,
-                    format!("required column missing (have: {})", header.join(", ")),
-                ));
-            }
-        }
+        let (mut rdr, header) = open_csv(text, src, &["cx", "f"])?;
         let col = |name: &str| header.iter().position(|h| h == name);
         let extra_idx: Vec<usize> = (0..header.len())
             .filter(|i| !KNOWN.contains(&header[*i].as_str()))
@@ -378,8 +346,13 @@ pub struct HptRow {
     pub tau: f64,
 }
 
-/// Reads a high-pressure-torsion file (`p_MPa`, `u_mm`, `tau_MPa`, optional `series`, `condition`).
-pub fn read_hpt(text: &str, src: &str) -> Result<Vec<HptRow>> {
+/// Opens CSV text (trimmed fields, `#` comments) and checks its header: no empty or duplicate
+/// column names, every `required` column present.
+fn open_csv<'a>(
+    text: &'a str,
+    src: &str,
+    required: &[&str],
+) -> Result<(csv::Reader<&'a [u8]>, Vec<String>)> {
     let mut rdr = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
@@ -390,9 +363,21 @@ pub fn read_hpt(text: &str, src: &str) -> Result<Vec<HptRow>> {
         .iter()
         .map(|s| s.to_string())
         .collect();
-    let col = |n: &str| header.iter().position(|h| h == n);
-    for req in ["p_MPa", "u_mm", "tau_MPa"] {
-        if col(req).is_none() {
+    for (i, h) in header.iter().enumerate() {
+        if h.is_empty() {
+            return Err(err(
+                src,
+                1,
+                &format!("#{}", i + 1),
+                "empty column name".into(),
+            ));
+        }
+        if header[..i].contains(h) {
+            return Err(err(src, 1, h, "duplicate column".into()));
+        }
+    }
+    for req in required {
+        if !header.iter().any(|h| h == req) {
             return Err(err(
                 src,
                 1,
@@ -401,6 +386,13 @@ pub fn read_hpt(text: &str, src: &str) -> Result<Vec<HptRow>> {
             ));
         }
     }
+    Ok((rdr, header))
+}
+
+/// Reads a high-pressure-torsion file (`p_MPa`, `u_mm`, `tau_MPa`, optional `series`, `condition`).
+pub fn read_hpt(text: &str, src: &str) -> Result<Vec<HptRow>> {
+    let (mut rdr, header) = open_csv(text, src, &["p_MPa", "u_mm", "tau_MPa"])?;
+    let col = |n: &str| header.iter().position(|h| h == n);
     let mut out = Vec::new();
     for (k, rec) in rdr.records().enumerate() {
         let line = k + 2;
