@@ -139,13 +139,20 @@ struct DataArgs {
 }
 
 impl DataArgs {
-    fn load(&self) -> Result<(Config, creep_core::measure::Dataset), CreepError> {
-        let cfg = self.config_only()?;
-        let data = creep_core::measure::Dataset::from_file(
-            &self.data,
-            &creep_core::measure::Defaults::default(),
-        )?;
-        Ok((cfg, data))
+    /// The configuration and the measurement file, read once.
+    fn load(&self) -> Result<(Config, Data), CreepError> {
+        Ok((self.config_only()?, measure_cmd::read_data(&self.data)?))
+    }
+
+    /// Like `load`, for commands that need creep measurements (not HPT curves).
+    fn load_rows(&self) -> Result<(Config, creep_core::measure::Dataset), CreepError> {
+        match self.load()? {
+            (cfg, Data::Rows(d)) => Ok((cfg, d)),
+            (_, Data::Hpt(_)) => Err(CreepError::Config {
+                source_name: self.data.display().to_string(),
+                message: "a high-pressure-torsion file (p_MPa, u_mm, tau_MPa): use ecf compare or ecf fit".into(),
+            }),
+        }
     }
 
     fn config_only(&self) -> Result<Config, CreepError> {
@@ -541,20 +548,16 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             }
             warn(&mut model);
         }
-        Cmd::Compare { d, json, plots } if measure_cmd::is_hpt(&d.data) => {
-            let cfg = d.config_only()?;
-            measure_cmd::compare_hpt(&cfg, &d.data, json, plots.as_deref(), &mut w)?;
-        }
-        Cmd::Fit { d, free, out, json } if measure_cmd::is_hpt(&d.data) => {
-            let cfg = d.config_only()?;
-            measure_cmd::fit_hpt(&cfg, &d.data, free.as_deref(), &out, json, &mut w)?;
-        }
-        Cmd::Compare { d, json, plots } => {
-            let (cfg, data) = d.load()?;
-            measure_cmd::compare(&cfg, &data, d.threads, json, plots.as_deref(), &mut w)?;
-        }
+        Cmd::Compare { d, json, plots } => match d.load()? {
+            (cfg, Data::Hpt(rows)) => {
+                measure_cmd::compare_hpt(&cfg, &d.data, &rows, json, plots.as_deref(), &mut w)?
+            }
+            (cfg, Data::Rows(data)) => {
+                measure_cmd::compare(&cfg, &data, d.threads, json, plots.as_deref(), &mut w)?
+            }
+        },
         Cmd::Diagnose { d, json } => {
-            let (cfg, data) = d.load()?;
+            let (cfg, data) = d.load_rows()?;
             measure_cmd::diagnose(&cfg, &data, d.threads, json, &mut w)?;
         }
         Cmd::Report {
@@ -562,7 +565,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             compare_with,
             out,
         } => {
-            let (cfg, data) = d.load()?;
+            let (cfg, data) = d.load_rows()?;
             let second = match compare_with {
                 Some(p) => {
                     let mut c = Config::from_file(&p)?;
@@ -582,10 +585,14 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             measure_cmd::report(&cfg, &first_name, second.as_ref(), &data, d.threads, &out)?;
             writeln!(w, "{}", out.display()).map_err(io)?;
         }
-        Cmd::Fit { d, free, out, json } => {
-            let (cfg, data) = d.load()?;
-            measure_cmd::fit(&cfg, &data, d.threads, free.as_deref(), &out, json, &mut w)?;
-        }
+        Cmd::Fit { d, free, out, json } => match d.load()? {
+            (cfg, Data::Hpt(rows)) => {
+                measure_cmd::fit_hpt(&cfg, &d.data, &rows, free.as_deref(), &out, json, &mut w)?
+            }
+            (cfg, Data::Rows(data)) => {
+                measure_cmd::fit(&cfg, &data, d.threads, free.as_deref(), &out, json, &mut w)?
+            }
+        },
         Cmd::Info => {
             writeln!(
                 w,
@@ -635,6 +642,8 @@ fn run(cli: Cli) -> Result<(), CreepError> {
 
 mod measure_cmd;
 mod plots;
+
+use measure_cmd::Data;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

@@ -39,12 +39,7 @@ pub fn compare(
             .zip(&pred)
             .map(|(r, p)| serde_json::json!({"line": r.line, "series": r.series, "cx": r.cx, "f": r.f, "f_model": p.f, "residual": p.f - r.f, "T_max_C": p.t_max, "slip_velocity_mps": p.slip_velocity}))
             .collect::<Vec<_>>());
-        writeln!(
-            w,
-            "{}",
-            serde_json::to_string_pretty(&v).map_err(|e| CreepError::State(e.to_string()))?
-        )
-        .map_err(io)?;
+        write_json(w, &v)?;
     } else {
         writeln!(
             w,
@@ -290,12 +285,7 @@ pub fn diagnose(
     let d = creep_core::diagnose::diagnose(cfg, data, threads, &progress)?;
     bar.finish_and_clear();
     if json {
-        writeln!(
-            w,
-            "{}",
-            serde_json::to_string_pretty(&d).map_err(|e| CreepError::State(e.to_string()))?
-        )
-        .map_err(io)?;
+        write_json(w, &d)?;
         return Ok(());
     }
     writeln!(
@@ -468,43 +458,60 @@ pub fn report(
     Ok(())
 }
 
-/// True if the file's header has the high-pressure-torsion columns (p_MPa, u_mm, tau_MPa).
-pub fn is_hpt(path: &Path) -> bool {
-    std::fs::read_to_string(path)
-        .ok()
-        .and_then(|t| {
-            t.lines()
-                .find(|l| !l.trim_start().starts_with('#'))
-                .map(|h| {
-                    let cols: Vec<&str> = h.split(',').map(|c| c.trim()).collect();
-                    ["p_MPa", "u_mm", "tau_MPa"]
-                        .iter()
-                        .all(|c| cols.contains(c))
-                })
-        })
-        .unwrap_or(false)
+/// A measurement file: rows of creep measurements, or high-pressure-torsion curves.
+pub enum Data {
+    /// Steady characteristics and time series (`cx`, `f`, ...).
+    Rows(Dataset),
+    /// High-pressure-torsion curves (`p_MPa`, `u_mm`, `tau_MPa`).
+    Hpt(Vec<creep_core::measure::HptRow>),
 }
 
-fn read_hpt_file(path: &Path) -> Result<Vec<creep_core::measure::HptRow>, CreepError> {
+/// Reads a measurement file once; a header with `p_MPa`, `u_mm` and `tau_MPa` makes it a
+/// high-pressure-torsion file.
+pub fn read_data(path: &Path) -> Result<Data, CreepError> {
+    let src = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| CreepError::Config {
-        source_name: path.display().to_string(),
+        source_name: src.clone(),
         message: format!("cannot read: {e}"),
     })?;
-    creep_core::measure::read_hpt(&text, &path.display().to_string())
+    let hpt = text
+        .lines()
+        .find(|l| !l.trim_start().starts_with('#'))
+        .is_some_and(|h| {
+            let cols: Vec<&str> = h.split(',').map(|c| c.trim()).collect();
+            ["p_MPa", "u_mm", "tau_MPa"]
+                .iter()
+                .all(|c| cols.contains(c))
+        });
+    Ok(if hpt {
+        Data::Hpt(creep_core::measure::read_hpt(&text, &src)?)
+    } else {
+        Data::Rows(Dataset::from_csv_str(
+            &text,
+            &src,
+            &creep_core::measure::Defaults::default(),
+        )?)
+    })
+}
+
+/// Writes a value as pretty JSON.
+fn write_json<T: serde::Serialize>(w: &mut Vec<u8>, v: &T) -> Result<(), CreepError> {
+    let text = serde_json::to_string_pretty(v).map_err(|e| CreepError::State(e.to_string()))?;
+    writeln!(w, "{text}").map_err(io)
 }
 
 /// Compares the layer model with high-pressure-torsion curves (seed Sec. 5.1).
 pub fn compare_hpt(
     cfg: &Config,
     path: &Path,
+    rows: &[creep_core::measure::HptRow],
     json: bool,
     plots: Option<&Path>,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let rows = read_hpt_file(path)?;
-    let model = creep_core::hpt::predict(cfg, &rows);
+    let model = creep_core::hpt::predict(cfg, rows);
     let mut series: Vec<String> = Vec::new();
-    for r in &rows {
+    for r in rows {
         if !series.contains(&r.series) {
             series.push(r.series.clone());
         }
@@ -524,7 +531,7 @@ pub fn compare_hpt(
             )
         })
         .collect();
-    let overall = creep_core::hpt::cv_rmse(cfg, &rows);
+    let overall = creep_core::hpt::cv_rmse(cfg, rows);
     if let Some(dir) = plots {
         std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
             source_name: dir.display().to_string(),
@@ -570,12 +577,7 @@ pub fn compare_hpt(
     }
     if json {
         let v = serde_json::json!({"cv_rmse_pct": overall, "n": rows.len(), "groups": per.iter().map(|(s, c)| serde_json::json!({"by": "series", "value": s, "cv_rmse_pct": c})).collect::<Vec<_>>()});
-        writeln!(
-            w,
-            "{}",
-            serde_json::to_string_pretty(&v).map_err(|e| CreepError::State(e.to_string()))?
-        )
-        .map_err(io)?;
+        write_json(w, &v)?;
     } else {
         writeln!(
             w,
@@ -595,12 +597,12 @@ pub fn compare_hpt(
 pub fn fit_hpt(
     cfg: &Config,
     path: &Path,
+    rows: &[creep_core::measure::HptRow],
     free: Option<&str>,
     out: &Path,
     json: bool,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let rows = read_hpt_file(path)?;
     let free: Vec<FreeParam> = match free {
         Some(list) => list
             .split(',')
@@ -611,7 +613,7 @@ pub fn fit_hpt(
             .map(FreeParam::Builtin)
             .collect(),
     };
-    let r = creep_core::hpt::fit(cfg, &path.display().to_string(), &rows, &free, &|_| {})?;
+    let r = creep_core::hpt::fit(cfg, &path.display().to_string(), rows, &free, &|_| {})?;
     report_fit(&r, out, json, w)
 }
 
@@ -653,12 +655,7 @@ fn report_fit(
             "termination": r.termination,
             "out": out.display().to_string(),
         });
-        writeln!(
-            w,
-            "{}",
-            serde_json::to_string_pretty(&v).map_err(|e| CreepError::State(e.to_string()))?
-        )
-        .map_err(io)?;
+        write_json(w, &v)?;
         return Ok(());
     }
     writeln!(
