@@ -101,6 +101,28 @@ pub struct Outputs {
     pub p0: f64,
 }
 
+impl Outputs {
+    /// The outputs in declaration order: F_x, F_y, M_z, f, T_max, T_mean, P_fric, the three
+    /// area fractions, a, b, p0 (the order of the state format and of the FMU's outputs).
+    pub fn to_array(&self) -> [f64; 13] {
+        [
+            self.fx,
+            self.fy,
+            self.mz,
+            self.f,
+            self.t_max,
+            self.t_mean,
+            self.p_fric,
+            self.frac_elastic,
+            self.frac_plastic,
+            self.frac_sliding,
+            self.a,
+            self.b,
+            self.p0,
+        ]
+    }
+}
+
 /// One point of the fields along the strip nearest y = 0 (seed Fig. 4.9, 4.10).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FieldPoint {

@@ -79,21 +79,7 @@ fn get_inputs(r: &mut R) -> Result<Inputs> {
     })
 }
 fn put_outputs(w: &mut W, o: &Outputs) {
-    for x in [
-        o.fx,
-        o.fy,
-        o.mz,
-        o.f,
-        o.t_max,
-        o.t_mean,
-        o.p_fric,
-        o.frac_elastic,
-        o.frac_plastic,
-        o.frac_sliding,
-        o.a,
-        o.b,
-        o.p0,
-    ] {
+    for x in o.to_array() {
         w.f(x);
     }
 }

@@ -2,7 +2,7 @@
 
 mod common;
 use common::*;
-use creep_core::{Config, Grid, Inputs, Model, Outputs};
+use creep_core::{Config, Grid, Inputs, Model};
 
 /// A small grid keeps the debug-build tests fast; the checks do not depend on it.
 const NX: i32 = 24;
@@ -22,24 +22,6 @@ fn core_model() -> Model {
         ny: NY as usize,
     };
     Model::new(&cfg).unwrap()
-}
-
-fn as_array(o: &Outputs) -> [f64; 13] {
-    [
-        o.fx,
-        o.fy,
-        o.mz,
-        o.f,
-        o.t_max,
-        o.t_mean,
-        o.p_fric,
-        o.frac_elastic,
-        o.frac_plastic,
-        o.frac_sliding,
-        o.a,
-        o.b,
-        o.p0,
-    ]
 }
 
 /// Inputs of step k of a changing-input scenario.
@@ -68,7 +50,7 @@ fn outputs_equal_the_core_library_bit_for_bit() {
     let o = m.steady(&scenario(0)).unwrap();
     assert_eq!(
         f.outputs().map(f64::to_bits),
-        as_array(&o).map(f64::to_bits)
+        o.to_array().map(f64::to_bits)
     );
     for k in 1..12 {
         let i = scenario(k);
@@ -78,7 +60,7 @@ fn outputs_equal_the_core_library_bit_for_bit() {
         let o = m.step(h, &i).unwrap();
         assert_eq!(
             f.outputs().map(f64::to_bits),
-            as_array(&o).map(f64::to_bits),
+            o.to_array().map(f64::to_bits),
             "step {k}"
         );
     }

@@ -93,21 +93,7 @@ fn rust_fmi_loads_steps_and_matches_the_core_library() {
         t += 1e-3;
         let o = core.step(1e-3, &i).unwrap();
         inst.get_real(&vout, &mut got).expect("outputs");
-        let want = [
-            o.fx,
-            o.fy,
-            o.mz,
-            o.f,
-            o.t_max,
-            o.t_mean,
-            o.p_fric,
-            o.frac_elastic,
-            o.frac_plastic,
-            o.frac_sliding,
-            o.a,
-            o.b,
-            o.p0,
-        ];
+        let want = o.to_array();
         for (j, n) in outs.iter().enumerate() {
             assert_eq!(
                 got[j].to_bits(),
