@@ -1,6 +1,8 @@
 //! Normal contact: exact elliptic Hertz contact (seed Eq. 2.1-2.6) and line contact (Eq. 2.7).
 
+use crate::config::{Config, Geometry};
 use crate::error::{check_positive, check_range, Result};
+use crate::params::P;
 use std::f64::consts::PI;
 
 /// Complete elliptic integrals K(e) and E(e) of modulus `e` (0 <= e < 1), by the
@@ -139,6 +141,23 @@ pub fn line_contact(r: f64, fn_line: f64, width: f64, g: f64, nu: f64) -> Result
         p0: 2.0 * fn_line / (PI * a),
         line: true,
     })
+}
+
+/// Contact patch of a configuration at a normal force.
+pub fn patch_for(cfg: &Config, fn_n: f64) -> Result<Patch> {
+    let p = &cfg.params;
+    match cfg.geometry {
+        Geometry::SemiAxes { a, b, fn_ref } => {
+            let s = (fn_n / fn_ref).cbrt();
+            Patch::from_semi_axes(a * s, b * s, fn_n)
+        }
+        Geometry::Curvatures { rx, ry } => {
+            hertz_from_curvatures(rx, ry, fn_n, p.si(P::G), p.si(P::Nu))
+        }
+        Geometry::Line { r, width } => {
+            line_contact(r, fn_n / width, width, p.si(P::G), p.si(P::Nu))
+        }
+    }
 }
 
 #[cfg(test)]

@@ -30,6 +30,7 @@ pub mod formula;
 pub mod hertz;
 pub mod hpt;
 pub mod kalker;
+pub mod material;
 pub mod measure;
 pub mod model;
 pub mod params;

@@ -107,6 +107,104 @@ pub fn peclet_ok(a: f64, v: f64, v_w: f64, kappa_w: f64, kappa_r: f64) -> bool {
     a * (v + v_w) > 20.0 * (kappa_r + kappa_w)
 }
 
+/// Solves the local flash temperature of a bristle move, T = t_hist + self_c q(T) (Eq. 4.35:
+/// history part `t_hist`, the sub-step's own heat `self_c q`), for the smallest root above
+/// `t_hist`: the temperature the bristle reaches first while heating up (q(T) may rise with T
+/// where softening turns an elastic bristle plastic). `eval(T)` returns the bristle's new state
+/// and its heat density q at temperature T; `first` is that pair at `t_hist`, `q_prev` the
+/// bristle's heat density of its previous sub-step (the predictor), `tol` the tolerance in K.
+/// Returns the state and q at the root.
+pub fn solve_self_heating<S: Copy>(
+    t_hist: f64,
+    self_c: f64,
+    q: f64,
+    first: S,
+    q_prev: f64,
+    tol: f64,
+    eval: impl Fn(f64) -> (S, f64),
+) -> (S, f64) {
+    let (mut ns, mut q) = (first, q);
+    let old_q = q_prev;
+    // Solve T = t_hist + self_c q(T) for the smallest root above t_hist (the temperature
+    // the bristle reaches first while heating up; q(T) may rise with T where softening
+    // turns an elastic bristle plastic): fixed-point steps upward while
+    // g(T) = t_hist + self_c q(T) - T > 0, then Illinois regula falsi once bracketed;
+    // tolerance `t_tol`: 1e-4 relative change of the softening factors.
+    let g_of = |q: f64, t: f64| t_hist + self_c * q - t;
+    let (mut ta, mut ga) = (t_hist, self_c * q);
+    // predictor: this bristle's heat of its previous sub-step, when it lies inside
+    // [t_hist, t_hist + self_c q(t_hist)]; else the fixed-point step from t_hist
+    let mut tb = ta + ga;
+    if old_q > 0.0 && self_c * old_q < ga {
+        let tp = t_hist + self_c * old_q;
+        let (sp, qp) = eval(tp);
+        let gp = g_of(qp, tp);
+        if gp.abs() < tol {
+            ns = sp;
+            q = qp;
+            tb = tp;
+            ta = tp;
+        } else if gp > 0.0 {
+            ta = tp;
+            ga = gp;
+            tb = tp + gp;
+        } else {
+            tb = tp;
+        }
+    }
+    let mut bracketed = false;
+    let mut gb = 0.0;
+    for _ in 0..60 {
+        if tb == ta {
+            break;
+        }
+        let (sb, qb) = eval(tb);
+        ns = sb;
+        q = qb;
+        gb = g_of(qb, tb);
+        if gb.abs() < tol {
+            break;
+        }
+        if gb > 0.0 {
+            ta = tb;
+            ga = gb;
+            tb += gb;
+        } else {
+            bracketed = true;
+            break;
+        }
+    }
+    if bracketed {
+        let mut side = 0;
+        for _ in 0..60 {
+            let tc = tb - gb * (tb - ta) / (gb - ga);
+            let (sc, qc) = eval(tc);
+            let gc = g_of(qc, tc);
+            ns = sc;
+            q = qc;
+            if gc.abs() < tol || (tb - ta).abs() < 1e-6 {
+                break;
+            }
+            if gc < 0.0 {
+                tb = tc;
+                gb = gc;
+                if side == -1 {
+                    ga *= 0.5;
+                }
+                side = -1;
+            } else {
+                ta = tc;
+                ga = gc;
+                if side == 1 {
+                    gb *= 0.5;
+                }
+                side = 1;
+            }
+        }
+    }
+    (ns, q)
+}
+
 /// Exact Eq. 4.35 for a heat history `q[i]` on intervals ending at `t[i]` (t_0 = 0 implied):
 /// the temperature rise at t_n divided by the flash factor. Reference for tests.
 pub fn exact_history_sum(t: &[f64], q: &[f64]) -> f64 {

@@ -1,0 +1,295 @@
+//! Advancing the bristles: one bristle move with its local temperature (Eq. 4.16, 4.21, 4.35), sub-steps of a strip, the march of new bristles.
+
+use super::{Contact, V_STANDSTILL};
+use crate::bristle::{self, BristleState};
+use crate::material::NodeP;
+use crate::thermal::{self, N_KERNEL};
+
+/// Per-sub-step kinematic context of one strip.
+pub(super) struct Kin {
+    h: f64,
+    dist: f64,
+    cx: f64,
+    cy: f64,
+    cs: f64,
+    lx: f64,
+    ly: f64,
+    ls: f64,
+    heat: bool,
+    alpha_c: f64,
+    t_bulk: f64,
+}
+
+impl Contact {
+    /// Kinematic/thermal context for a sub-step of duration `h` moving distance `dist`.
+    pub(super) fn kin(&self, h: f64, dist: f64) -> Kin {
+        let i = &self.inputs;
+        let heat = i.v > V_STANDSTILL && h > 0.0;
+        let vw = i.v * (1.0 + i.cx).abs();
+        let alpha = thermal::heat_partition(
+            vw,
+            i.v,
+            self.r.lambda_w,
+            self.r.kappa_w,
+            self.r.lambda_r,
+            self.r.kappa_r,
+        );
+        Kin {
+            h,
+            dist,
+            cx: i.cx,
+            cy: i.cy,
+            cs: i.spin,
+            lx: self.flex.0,
+            ly: self.flex.1,
+            ls: self.flex.2,
+            heat,
+            alpha_c: alpha * thermal::flash_factor(self.r.lambda_w, self.r.kappa_w),
+            t_bulk: i.t_bulk,
+        }
+    }
+
+    /// Advances one bristle by one sub-step; returns its heat density q (W/m^2, both bodies).
+    #[inline]
+    pub(super) fn update_bristle(
+        &self,
+        k: &Kin,
+        np: &NodeP,
+        [x, y]: [f64; 2],
+        s: &mut BristleState,
+        acc: &mut [f64; N_KERNEL],
+        fac: &([f64; N_KERNEL], [f64; N_KERNEL]),
+    ) -> f64 {
+        let d = k.dist;
+        let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
+        // Temperature from the heat history (all but the newest interval), Eq. 4.35.
+        // acc[0] integrates all heat ever received (rate 0): zero means a cold history
+        let warm = acc[0] != 0.0;
+        let t_hist = if self.r.temperature && k.heat && warm {
+            let mut sum = 0.0;
+            for ((w, d), a) in self.kernel.weights.iter().zip(fac.0.iter()).zip(acc.iter()) {
+                sum += w * d * a;
+            }
+            k.t_bulk + k.alpha_c * sum
+        } else {
+            k.t_bulk
+        };
+        let self_c = if k.heat {
+            k.alpha_c * 2.0 * k.h.sqrt()
+        } else {
+            0.0
+        };
+        let old = *s;
+        let u_abs = old.u[0].hypot(old.u[1]);
+        let slip = if k.h > 0.0 {
+            du[0].hypot(du[1]) / k.h
+        } else {
+            0.0
+        };
+        // Elastic-release heat (the -L dtau part of Eq. 4.29) caused by the sub-step's own
+        // self-heating feeds back on the temperature with a gain of about
+        // self_c |tau|^2 (L_x + L_e) X_T / h, which grows like 1/sqrt(h): below ~1 us the
+        // implicit solve would run away (the half-space kernel has no heat capacity of the
+        // layer to stop it). That part of the release is weighted by theta = min(1, 0.8/gain):
+        // fully implicit while the sub-step's temperature equation is a contraction with
+        // margin (gain < 0.8), damped only for tiny sub-steps (docs/model.md, section 6).
+        let release_ref: std::cell::Cell<Option<[f64; 2]>> = std::cell::Cell::new(None);
+        let theta = if k.heat && self.r.temperature {
+            let cmax = self.r.tc1_t.max(self.r.tc2_t).max(self.r.lp_t);
+            let t0 = old.tau[0].hypot(old.tau[1]).max(1.0);
+            let gain = self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * cmax / k.h;
+            if gain > 0.8 {
+                0.8 / gain
+            } else {
+                1.0
+            }
+        } else {
+            1.0
+        };
+        let eval = |t: f64| -> (BristleState, f64) {
+            let m = self.material(np, t, u_abs, slip);
+            let lxe = k.lx + m.le;
+            let lye = k.ly + m.le;
+            let lse = k.ls + m.le;
+            let dtau = [
+                d * (k.cx / lxe - k.cs * y / lse),
+                d * (k.cy / lye + k.cs * x / lse),
+            ];
+            let mut ns = old;
+            bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule);
+            let q = if k.heat {
+                let tr = match release_ref.get() {
+                    Some(r) => [
+                        r[0] + theta * (ns.tau[0] - r[0]),
+                        r[1] + theta * (ns.tau[1] - r[1]),
+                    ],
+                    None => {
+                        release_ref.set(Some(ns.tau));
+                        ns.tau
+                    }
+                };
+                let dux = du[0] - lxe * (tr[0] - old.tau[0]);
+                let duy = du[1] - lye * (tr[1] - old.tau[1]);
+                (self.r.kq * (ns.tau[0] * dux + ns.tau[1] * duy) / k.h).max(0.0)
+            } else {
+                0.0
+            };
+            (ns, q)
+        };
+        let (mut ns, mut q) = eval(t_hist);
+        if self.r.temperature && q > 0.0 && self_c > 0.0 {
+            (ns, q) = thermal::solve_self_heating(t_hist, self_c, q, ns, old.q, self.t_tol, eval);
+        }
+        ns.temp = if self.r.temperature {
+            t_hist + self_c * q
+        } else {
+            k.t_bulk
+        };
+        ns.q = q;
+        *s = ns;
+        if self.r.temperature && k.heat && (warm || q > 0.0) {
+            let qw = q; // alpha is folded into alpha_c
+            for ((a, d), g) in acc.iter_mut().zip(fac.0.iter()).zip(fac.1.iter()) {
+                *a = d * *a + qw * g;
+            }
+        }
+        q
+    }
+
+    #[inline]
+    pub(super) fn idx(&self, j: usize, slot: usize) -> usize {
+        j * (self.nx + 1) + (self.head[j] + slot) % (self.nx + 1)
+    }
+
+    /// One sub-step of strip `j`: bristles move by `dist` (m) in time `h` (s); the phase is
+    /// advanced by the caller. Nodes are evaluated at their end-of-sub-step positions.
+    pub(super) fn substep_strip(
+        &mut self,
+        j: usize,
+        h: f64,
+        dist: f64,
+        phase_end: f64,
+        skip: usize,
+        end: usize,
+    ) {
+        let nx = self.nx;
+        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let kin = self.kin(h, dist);
+        let fac = self.factors(h, kin.heat);
+        let inside = if phase_end > 0.0 { nx } else { nx + 1 };
+        // update in place (the state vectors are moved out so `self` stays borrowable)
+        let mut st = std::mem::take(&mut self.st);
+        let mut accs = std::mem::take(&mut self.acc);
+        for slot in skip..inside.min(end) {
+            let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
+            let id = self.idx(j, slot);
+            self.move_bristle(j, xi, &kin, &fac, &mut st[id], &mut accs[id]);
+        }
+        self.st = st;
+        self.acc = accs;
+    }
+
+    /// Kernel factors of a sub-step of length `h` (identity when no heat flows).
+    pub(super) fn factors(&self, h: f64, heat: bool) -> ([f64; N_KERNEL], [f64; N_KERNEL]) {
+        if self.r.temperature && heat {
+            self.kernel.step_factors(h)
+        } else {
+            ([1.0; N_KERNEL], [h; N_KERNEL])
+        }
+    }
+
+    /// Moves one bristle of strip `j` over `kin.dist` to its end position `xi_end`
+    /// (normalized). The material is taken at the end of the sub-step (Eq. 4.5), but never
+    /// closer to the trailing edge than half a cell: the last node stands for the last cell
+    /// (docs/model.md); the spin lever arm is the path's midpoint.
+    #[inline]
+    pub(super) fn move_bristle(
+        &self,
+        j: usize,
+        xi_end: f64,
+        kin: &Kin,
+        fac: &([f64; N_KERNEL], [f64; N_KERNEL]),
+        s: &mut BristleState,
+        acc: &mut [f64; N_KERNEL],
+    ) {
+        let a = self.patch.a;
+        let dxi = 2.0 * self.ell[j] / self.nx as f64;
+        let y = if self.patch.line {
+            0.0
+        } else {
+            self.eta[j] * self.patch.b
+        };
+        let x_mid = a * (xi_end + 0.5 * kin.dist / a);
+        let np = self.r.node_p(
+            &self.patch,
+            xi_end.max(-self.ell[j] + 0.5 * dxi),
+            self.eta[j],
+        );
+        self.update_bristle(kin, &np, [x_mid, y], s, acc, fac);
+    }
+
+    /// States of the `count` bristles that entered strip `j` during the current step: the one
+    /// in slot k made k full cell moves, then the final partial move `d_end` (m) that ends at
+    /// the strip's phase. Same updates, positions and sub-step lengths as the sub-step loop.
+    pub(super) fn march_new(&mut self, j: usize, count: usize, d_end: f64) {
+        let v = self.inputs.v;
+        let dx = 2.0 * self.ell[j] * self.patch.a / self.nx as f64;
+        let dxi = 2.0 * self.ell[j] / self.nx as f64;
+        let phase_end = self.phase[j];
+        // With v = 0 (the steady march at standstill) the march is over distance only and
+        // carries no heat: the v -> 0 limit.
+        let time = |d: f64| if v > V_STANDSTILL { d / v } else { 0.0 };
+        let kin_full = self.kin(time(dx), dx);
+        let fac_full = self.factors(time(dx), kin_full.heat);
+        let kin_part = self.kin(time(d_end), d_end);
+        let fac_part = self.factors(time(d_end), kin_part.heat);
+        let mut s = BristleState {
+            temp: self.inputs.t_bulk,
+            ..BristleState::default()
+        };
+        let mut acc = [0.0; N_KERNEL];
+        for k in 0..count {
+            let id = self.idx(j, k);
+            // slot nx is past the trailing edge once the phase is > 0: not moved (as in the loop)
+            if d_end > 0.0 && k < self.nx {
+                let (mut ps, mut pacc) = (s, acc);
+                self.move_bristle(
+                    j,
+                    self.ell[j] - (k as f64 + phase_end) * dxi,
+                    &kin_part,
+                    &fac_part,
+                    &mut ps,
+                    &mut pacc,
+                );
+                self.st[id] = ps;
+                self.acc[id] = pacc;
+            } else {
+                self.st[id] = s;
+                self.acc[id] = acc;
+            }
+            if k + 1 < count {
+                self.move_bristle(
+                    j,
+                    self.ell[j] - (k as f64 + 1.0) * dxi,
+                    &kin_full,
+                    &fac_full,
+                    &mut s,
+                    &mut acc,
+                );
+            }
+        }
+    }
+
+    /// A new bristle enters strip `j`: the oldest slot is recycled at the leading edge.
+    pub(super) fn enter_bristle(&mut self, j: usize) {
+        let nx1 = self.nx + 1;
+        self.head[j] = (self.head[j] + self.nx) % nx1;
+        let id = self.idx(j, 0);
+        self.st[id] = BristleState {
+            temp: self.inputs.t_bulk,
+            ..BristleState::default()
+        };
+        self.acc[id] = [0.0; N_KERNEL];
+        self.phase[j] = 0.0;
+    }
+}

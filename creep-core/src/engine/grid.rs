@@ -1,0 +1,114 @@
+//! The grid's integrals: quadrature weights of a strip for its phase, forces, moment, heat and regime fractions, and the fields along y = 0.
+
+use super::{Contact, FieldPoint, Outputs};
+
+impl Contact {
+    /// Quadrature weights (normalized length) of the nodes of strip `j` for its phase.
+    pub(super) fn weights(&self, j: usize, w: &mut [f64]) {
+        let nx = self.nx;
+        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let ph = self.phase[j];
+        for x in w.iter_mut() {
+            *x = 0.0;
+        }
+        w[0] += 0.5 * ph * dxi;
+        for k in 0..nx - 1 {
+            w[k] += 0.5 * dxi;
+            w[k + 1] += 0.5 * dxi;
+        }
+        let lt = (1.0 - ph) * dxi;
+        w[nx - 1] += 0.5 * lt * (1.0 + ph);
+        w[nx] += 0.5 * lt * (1.0 - ph);
+    }
+
+    pub(super) fn integrate(&self) -> Outputs {
+        let (a, b) = (self.patch.a, self.patch.b);
+        let nx = self.nx;
+        let mut w = vec![0.0; nx + 1];
+        let (mut fx, mut fy, mut mz, mut pf, mut tsum, mut area) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        let mut fr = [0.0; 3];
+        let mut tmax = f64::NEG_INFINITY;
+        for j in 0..self.ny {
+            self.weights(j, &mut w);
+            let dy = if self.patch.line {
+                2.0 * b
+            } else {
+                self.deta[j] * b
+            };
+            let y = if self.patch.line {
+                0.0
+            } else {
+                self.eta[j] * b
+            };
+            let dxi = 2.0 * self.ell[j] / nx as f64;
+            for (slot, wk) in w.iter().enumerate() {
+                let s = &self.st[self.idx(j, slot)];
+                let da = wk * a * dy;
+                let x = a * (self.ell[j] - (slot as f64 + self.phase[j]) * dxi);
+                fx += s.tau[0] * da;
+                fy += s.tau[1] * da;
+                mz += (x * s.tau[1] - y * s.tau[0]) * da;
+                pf += s.q * da;
+                if *wk > 0.0 {
+                    tsum += s.temp * da;
+                    area += da;
+                    fr[s.regime as usize] += da;
+                    tmax = tmax.max(s.temp);
+                }
+            }
+        }
+        let fn_n = self.inputs.fn_n;
+        let area = area.max(f64::MIN_POSITIVE);
+        Outputs {
+            fx,
+            fy,
+            mz,
+            f: if fn_n > 0.0 { fx / fn_n } else { 0.0 },
+            t_max: if tmax.is_finite() {
+                tmax
+            } else {
+                self.inputs.t_bulk
+            },
+            t_mean: tsum / area,
+            p_fric: pf,
+            frac_elastic: fr[0] / area,
+            frac_plastic: fr[1] / area,
+            frac_sliding: fr[2] / area,
+            a,
+            b,
+            p0: self.patch.p0,
+        }
+    }
+
+    /// Fields along the strip nearest y = 0, from the leading to the trailing edge.
+    pub fn field_y0(&self) -> Vec<FieldPoint> {
+        let j = (0..self.ny)
+            .min_by(|&p, &q| self.eta[p].abs().total_cmp(&self.eta[q].abs()))
+            .unwrap_or(0);
+        let nx = self.nx;
+        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let inside = if self.phase[j] > 0.0 { nx } else { nx + 1 };
+        (0..inside)
+            .map(|slot| {
+                let xi = self.ell[j] - (slot as f64 + self.phase[j]) * dxi;
+                let s = &self.st[self.idx(j, slot)];
+                let np = self.r.node_p(&self.patch, xi, self.eta[j]);
+                let v = self.inputs.v;
+                let slip = v
+                    * (self.inputs.cx - self.inputs.spin * self.eta[j] * self.patch.b)
+                        .hypot(self.inputs.cy + self.inputs.spin * xi * self.patch.a);
+                let m = self.material(&np, s.temp, s.u[0].hypot(s.u[1]), slip);
+                FieldPoint {
+                    x: xi * self.patch.a,
+                    tau: (s.tau[0] * s.tau[0] + s.tau[1] * s.tau[1]).sqrt(),
+                    tau_x: s.tau[0],
+                    tau_c1: m.tc1,
+                    tau_c2: m.tc2,
+                    p: np.p,
+                    t: s.temp,
+                    regime: s.regime as u8,
+                }
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,431 @@
+//! The bristle engine: a persistent grid of bristles carried through the contact, one `step(dt, inputs)` for time.
+//!
+//! Each of `ny` strips across the contact holds `nx + 1` bristles (material points of the
+//! third body layer, seed Fig. 4.2) in normalized coordinates xi = x/a in [-l_j, l_j],
+//! l_j = sqrt(1 - eta_j^2), eta_j = y/b. Bristles move towards the trailing edge at the
+//! vehicle speed; a strip keeps a ring buffer and a phase in [0, 1) that says how far its
+//! bristles have moved since the last one entered at the leading edge with zero
+//! displacement (Eq. 4.17). A time step is cut into sub-steps at the instants a new bristle
+//! enters; in each sub-step every bristle gets the rigid slip increment of Eq. 4.16 and
+//! the bristle law (3BL or Coulomb, module [`crate::bristle`]) with the temperature of its
+//! own heat history (module [`crate::thermal`]), solved per bristle.
+//!
+//! Steady state is the same code: [`Contact::steady`] marches one bristle per strip from
+//! the leading to the trailing edge with the same sub-step `dx/v` and stores its state at
+//! every node, which is exactly the grid the transient step reaches after 2a/v with constant
+//! inputs (tested bit for bit).
+//!
+//! Where each job lives: this file holds the contact's state and the time loop (`step`,
+//! `steady`, state plumbing); [`io`] the inputs and outputs; `advance` one bristle move and
+//! the sub-step loop and march; `grid` the integrals and fields; `modifiers` the formula and
+//! custom effects. The material law is [`crate::material`], the temperature solve and heat
+//! kernel [`crate::thermal`], the Hertz patch [`crate::hertz`].
+
+mod advance;
+mod grid;
+pub mod io;
+mod modifiers;
+
+pub use crate::hertz::patch_for;
+pub use crate::material::layer_material;
+pub use io::{FieldPoint, Inputs, Outputs, V_STANDSTILL};
+
+use crate::bristle::{BristleState, Regime};
+use crate::config::{Config, Geometry, ModelKind};
+use crate::error::{check_range, CreepError, Result};
+use crate::hertz::Patch;
+use crate::kalker;
+use crate::material::Resolved;
+use crate::thermal::{self, Kernel, N_KERNEL};
+
+/// The persistent contact: geometry, bristle grid and its state.
+#[derive(Clone, Debug)]
+pub struct Contact {
+    cfg: Config,
+    r: Resolved,
+    kernel: Kernel,
+    nx: usize,
+    ny: usize,
+    /// Normalized strip centres eta_j and half-lengths l_j, strip widths d eta_j.
+    eta: Vec<f64>,
+    ell: Vec<f64>,
+    deta: Vec<f64>,
+    /// Ring-buffer head and phase per strip.
+    head: Vec<usize>,
+    phase: Vec<f64>,
+    /// Bristle state (index j * (nx + 1) + slot).
+    st: Vec<BristleState>,
+    acc: Vec<[f64; N_KERNEL]>,
+    /// Time since start, s.
+    time: f64,
+    inputs: Inputs,
+    patch: Patch,
+    flex: (f64, f64, f64),
+    out: Outputs,
+    initialized: bool,
+    warnings: Vec<String>,
+    /// Temperature tolerance of the local solve, K: 1e-4 / (largest temperature coefficient).
+    t_tol: f64,
+    /// Compute bristles that enter during a step by a march (identical results, less work).
+    march: bool,
+    /// Values of the extra (data) columns the formula effects use, by name.
+    extra: Vec<(String, f64)>,
+    /// Formula variables: local placeholders, operating point, columns (see `formula`).
+    fvars: Vec<f64>,
+    /// Product of the operating-point-only formula factors per target
+    /// (tau_c1, tau_c2, L_e, L_p, mu).
+    fstatic: [f64; 5],
+    /// True if some formula uses local bristle state.
+    flocal: bool,
+}
+
+impl Contact {
+    /// A new contact for a bristle-model configuration (`ecf` or `fastsim`).
+    pub fn new(cfg: &Config) -> Result<Self> {
+        if cfg.model == ModelKind::Polach {
+            return Err(CreepError::Config {
+                source_name: "model".into(),
+                message: "polach is a closed-form model, not a bristle model".into(),
+            });
+        }
+        cfg.grid.validate()?;
+        let (nx, ny) = (cfg.grid.nx, cfg.grid.ny);
+        let line = matches!(cfg.geometry, Geometry::Line { .. });
+        let ny = if line { 1 } else { ny };
+        let mut eta = Vec::with_capacity(ny);
+        let mut ell = Vec::with_capacity(ny);
+        let mut deta = Vec::with_capacity(ny);
+        for j in 0..ny {
+            if line {
+                eta.push(0.0);
+                ell.push(1.0);
+                deta.push(2.0);
+            } else {
+                let e = -1.0 + (j as f64 + 0.5) * 2.0 / ny as f64;
+                eta.push(e);
+                ell.push((1.0 - e * e).sqrt());
+                deta.push(2.0 / ny as f64);
+            }
+        }
+        let n = ny * (nx + 1);
+        let patch = Patch {
+            a: 1.0,
+            b: 1.0,
+            p0: 0.0,
+            line,
+        };
+        Ok(Contact {
+            cfg: cfg.clone(),
+            r: Resolved::from_config(cfg),
+            kernel: Kernel::default(),
+            nx,
+            ny,
+            eta,
+            ell,
+            deta,
+            head: vec![0; ny],
+            phase: vec![0.0; ny],
+            st: vec![BristleState::default(); n],
+            acc: vec![[0.0; N_KERNEL]; n],
+            time: 0.0,
+            inputs: Inputs::default(),
+            patch,
+            flex: (0.0, 0.0, 0.0),
+            out: Outputs::default(),
+            initialized: false,
+            warnings: Vec::new(),
+            march: true,
+            extra: Vec::new(),
+            fvars: Vec::new(),
+            fstatic: [1.0; 5],
+            flocal: cfg.formulas.iter().any(|f| f.local)
+                || cfg.custom.iter().any(|c| c.effect.uses_local_state()),
+            t_tol: {
+                let r = Resolved::from_config(cfg);
+                let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
+                if cmax > 0.0 {
+                    (1e-4 / cmax).min(0.1)
+                } else {
+                    0.1
+                }
+            },
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &Config {
+        &self.cfg
+    }
+
+    /// Simulated time, s.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Last outputs.
+    pub fn outputs(&self) -> Outputs {
+        self.out
+    }
+
+    /// Last inputs.
+    pub fn inputs(&self) -> Inputs {
+        self.inputs
+    }
+
+    /// Warnings raised since the last call (e.g. Péclet condition not met), drained.
+    pub fn take_warnings(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.warnings)
+    }
+
+    /// Contact patch for a normal force (geometry of the configuration).
+    pub fn patch_for(&self, fn_n: f64) -> Result<Patch> {
+        patch_for(&self.cfg, fn_n)
+    }
+
+    fn set_inputs(&mut self, inputs: &Inputs) -> Result<()> {
+        inputs.validate()?;
+        if inputs.fn_n > 0.0 {
+            self.patch = self.patch_for(inputs.fn_n)?;
+            let (a, b) = (self.patch.a, self.patch.b);
+            let (ka, kb) = if self.patch.line {
+                (a, 1e6 * a)
+            } else {
+                (a, b)
+            };
+            let c = kalker::coefficients(ka, kb, self.r.nu)?;
+            self.flex = kalker::flexibilities(ka, kb, self.r.g, &c);
+        }
+        self.inputs = *inputs;
+        self.update_formula_vars()?;
+        if self.r.temperature && inputs.v > V_STANDSTILL {
+            let vw = inputs.v * (1.0 + inputs.cx).abs();
+            if !thermal::peclet_ok(self.patch.a, inputs.v, vw, self.r.kappa_w, self.r.kappa_r) {
+                let msg = format!(
+                    "Péclet condition a (v + v_w) > 20 (kappa_r + kappa_w) (Eq. 4.33) not met at v = {} m/s, a = {} mm: the flash temperature model neglects lateral heat conduction that matters here",
+                    inputs.v,
+                    self.patch.a * 1e3
+                );
+                if !self.warnings.contains(&msg) {
+                    self.warnings.push(msg);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Advances the contact by `dt` seconds with `inputs` held constant over the step
+    /// (Eq. 4.15). With the effect `transient` off, returns the quasi-steady state instead.
+    pub fn step(&mut self, dt: f64, inputs: &Inputs) -> Result<Outputs> {
+        check_range("dt", dt, 0.0, 1e3, "s")?;
+        if !self.r.transient || !self.initialized {
+            let out = self.steady(inputs)?;
+            self.time += dt;
+            return Ok(out);
+        }
+        self.set_inputs(inputs)?;
+        if inputs.fn_n <= 0.0 {
+            return Ok(self.lift_off());
+        }
+        let v = inputs.v;
+        let a = self.patch.a;
+        for j in 0..self.ny {
+            let dx = 2.0 * self.ell[j] * a / self.nx as f64;
+            if v <= V_STANDSTILL || dt == 0.0 {
+                let ph = self.phase[j];
+                self.substep_strip(j, dt, 0.0, ph, 0, self.nx + 1);
+                continue;
+            }
+            let mut remaining = v * dt;
+            let tol = 1e-9 * dx;
+            // Bristles that enter during this step see only this step's (constant) inputs:
+            // full cells, then the final partial move. They are computed afterwards by a march
+            // (`march_new`), which performs exactly the updates the sub-step loop would, so the
+            // loop only advances the bristles that were in the contact before the step
+            // (slots >= n_new). With v dt >= 2a the whole step costs one steady march.
+            let mut n_new = 0usize;
+            let mut d_end = 0.0;
+            // Bristles that will leave before the end of the step need no update at all: count
+            // this step's entries first (same arithmetic as the loop below).
+            let wraps = {
+                let (mut rem, mut ph, mut w) = (remaining, self.phase[j], 0usize);
+                while rem > tol {
+                    let to_next = (1.0 - ph) * dx;
+                    if rem >= to_next - tol {
+                        w += 1;
+                        rem -= to_next;
+                        ph = 0.0;
+                    } else {
+                        rem = 0.0;
+                    }
+                }
+                w
+            };
+            while remaining > tol {
+                let to_next = (1.0 - self.phase[j]) * dx;
+                if remaining >= to_next - tol {
+                    // end positions are one node further (phase 1), then the slots shift
+                    if !self.march {
+                        self.substep_strip(j, to_next / v, to_next, 1.0, 0, self.nx + 1);
+                    } else if n_new + (wraps - n_new) <= self.nx {
+                        self.substep_strip(
+                            j,
+                            to_next / v,
+                            to_next,
+                            1.0,
+                            n_new,
+                            self.nx + 1 - (wraps - n_new),
+                        );
+                    }
+                    // all bristles moved one node: the slot numbering shifts by recycling the oldest
+                    self.enter_bristle(j);
+                    n_new += 1;
+                    remaining -= to_next;
+                } else {
+                    let ph = self.phase[j] + remaining / dx;
+                    if !self.march {
+                        self.substep_strip(j, remaining / v, remaining, ph, 0, self.nx + 1);
+                    } else if n_new <= self.nx {
+                        self.substep_strip(j, remaining / v, remaining, ph, n_new, self.nx + 1);
+                    }
+                    self.phase[j] = ph;
+                    d_end = remaining;
+                    remaining = 0.0;
+                }
+            }
+            if n_new > 0 && self.march {
+                self.march_new(j, n_new.min(self.nx + 1), d_end);
+            }
+        }
+        self.time += dt;
+        self.out = self.integrate();
+        Ok(self.out)
+    }
+
+    fn lift_off(&mut self) -> Outputs {
+        for s in self.st.iter_mut() {
+            *s = BristleState {
+                temp: self.inputs.t_bulk,
+                ..BristleState::default()
+            };
+        }
+        for a in self.acc.iter_mut() {
+            *a = [0.0; N_KERNEL];
+        }
+        self.out = Outputs {
+            t_max: self.inputs.t_bulk,
+            t_mean: self.inputs.t_bulk,
+            frac_elastic: 1.0,
+            ..Outputs::default()
+        };
+        self.out
+    }
+
+    /// Sets the grid to the steady state of constant `inputs` and returns its outputs.
+    /// Does not advance time.
+    pub fn steady(&mut self, inputs: &Inputs) -> Result<Outputs> {
+        self.set_inputs(inputs)?;
+        self.initialized = true;
+        if inputs.fn_n <= 0.0 {
+            return Ok(self.lift_off());
+        }
+        // the steady state is the grid a transient run reaches with constant inputs: every
+        // bristle entered under these inputs, i.e. the march of newly entered bristles over
+        // the whole strip at phase 0
+        for j in 0..self.ny {
+            self.head[j] = 0;
+            self.phase[j] = 0.0;
+            self.march_new(j, self.nx + 1, 0.0);
+        }
+        self.out = self.integrate();
+        Ok(self.out)
+    }
+
+    /// Raw state for serialization: (time, inputs, heads, phases, bristles, accumulators, initialized).
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn raw_state(
+        &self,
+    ) -> (
+        f64,
+        Inputs,
+        &[usize],
+        &[f64],
+        &[BristleState],
+        &[[f64; N_KERNEL]],
+        bool,
+        Outputs,
+    ) {
+        (
+            self.time,
+            self.inputs,
+            &self.head,
+            &self.phase,
+            &self.st,
+            &self.acc,
+            self.initialized,
+            self.out,
+        )
+    }
+
+    /// Restores a raw state; checks the sizes.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn set_raw_state(
+        &mut self,
+        time: f64,
+        inputs: Inputs,
+        head: Vec<usize>,
+        phase: Vec<f64>,
+        st: Vec<BristleState>,
+        acc: Vec<[f64; N_KERNEL]>,
+        initialized: bool,
+        out: Outputs,
+    ) -> Result<()> {
+        if head.len() != self.ny
+            || phase.len() != self.ny
+            || st.len() != self.st.len()
+            || acc.len() != self.acc.len()
+        {
+            return Err(CreepError::State(format!(
+                "grid mismatch: state has {} strips / {} bristles, contact has {} / {}",
+                head.len(),
+                st.len(),
+                self.ny,
+                self.st.len()
+            )));
+        }
+        if head.iter().any(|&h| h > self.nx) || phase.iter().any(|p| !(0.0..1.0).contains(p)) {
+            return Err(CreepError::State(
+                "corrupt ring-buffer head or phase".into(),
+            ));
+        }
+        self.time = time;
+        self.set_inputs(&inputs)?;
+        self.head = head;
+        self.phase = phase;
+        self.st = st;
+        self.acc = acc;
+        self.initialized = initialized;
+        self.out = out;
+        Ok(())
+    }
+
+    /// Switches the march of newly entered bristles off (plain sub-step loop for every
+    /// bristle). For tests that show both give identical results.
+    #[doc(hidden)]
+    pub fn set_march_new_bristles(&mut self, on: bool) {
+        self.march = on;
+    }
+
+    /// Grid size (nx, ny actually used; a line contact has one strip).
+    pub fn grid_size(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+}
+
+/// Regime counter helper for tests and callers.
+pub fn regime_name(r: Regime) -> &'static str {
+    match r {
+        Regime::Elastic => "elastic",
+        Regime::Plastic => "plastic",
+        Regime::Sliding => "sliding",
+    }
+}

@@ -1,0 +1,260 @@
+//! The layer's material law once: pressure and temperature dependence of tau_c1, tau_c2, L_p, L_e (seed Eq. 4.3, 4.4), resolved to SI.
+
+use crate::bristle::{Material, Rule};
+use crate::config::{Bound, Config};
+use crate::effects::Effect;
+use crate::hertz::Patch;
+use crate::params::P;
+
+/// Resolved SI parameters used in the inner loop.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Resolved {
+    pub coulomb: bool,
+    pub plastic: bool,
+    pub layer_el: bool,
+    pub pressure: bool,
+    pub temperature: bool,
+    pub transient: bool,
+    pub rule: Rule,
+    pub parabolic: bool,
+    pub mu: f64,
+    pub g: f64,
+    pub nu: f64,
+    pub le0: f64,
+    pub le_p: f64,
+    pub le_t: f64,
+    pub lp0: f64,
+    pub lp_p: f64,
+    pub lp_t: f64,
+    pub tc10: f64,
+    pub tc1_p: f64,
+    pub tc1_t: f64,
+    pub tc20: f64,
+    pub tc2_p: f64,
+    pub tc2_t: f64,
+    pub t0: f64,
+    pub lambda_w: f64,
+    pub kappa_w: f64,
+    pub lambda_r: f64,
+    pub kappa_r: f64,
+    pub kq: f64,
+}
+
+impl Resolved {
+    pub(crate) fn from_config(c: &Config) -> Self {
+        let p = &c.params;
+        Resolved {
+            coulomb: c.has(Effect::Coulomb),
+            plastic: c.has(Effect::VocePlasticity),
+            layer_el: c.has(Effect::LayerElasticity),
+            pressure: c.has(Effect::PressureDependence),
+            temperature: c.has(Effect::Temperature),
+            transient: c.has(Effect::Transient),
+            // FASTSIM's clip onto the Coulomb bound is a radial return along the trial
+            // stress: the elastic-unloading rule with tau_c1 = tau_c2 = mu p.
+            rule: if c.has(Effect::ElasticUnloading) || c.has(Effect::Coulomb) {
+                Rule::ElasticUnloading
+            } else {
+                Rule::SameCharacteristic
+            },
+            parabolic: c.bound == Bound::Parabolic,
+            mu: p.si(P::Mu),
+            g: p.si(P::G),
+            nu: p.si(P::Nu),
+            le0: p.si(P::Le0),
+            le_p: p.si(P::LeP),
+            le_t: p.si(P::LeT),
+            lp0: p.si(P::Lp0),
+            lp_p: p.si(P::LpP),
+            lp_t: p.si(P::LpT),
+            tc10: p.si(P::Tc10),
+            tc1_p: p.si(P::Tc1P),
+            tc1_t: p.si(P::Tc1T),
+            tc20: p.si(P::Tc20),
+            tc2_p: p.si(P::Tc2P),
+            tc2_t: p.si(P::Tc2T),
+            t0: p.si(P::T0),
+            lambda_w: p.si(P::LambdaW),
+            kappa_w: p.si(P::KappaW),
+            lambda_r: p.si(P::LambdaR),
+            kappa_r: p.si(P::KappaR),
+            kq: p.si(P::Kq),
+        }
+    }
+
+    /// Pressure factor 1 - exp(-p c) of Eq. 4.3/4.4 (1 when the effect is off or c = inf).
+    #[inline]
+    pub(crate) fn pf(&self, p: f64, c: f64) -> f64 {
+        if !self.pressure || c.is_infinite() {
+            1.0
+        } else {
+            -(-p * c).exp_m1()
+        }
+    }
+
+    /// Temperature factor exp(-(T - T0) c) of Eq. 4.3/4.4 (1 when the effect is off).
+    #[inline]
+    pub(crate) fn tf(&self, t: f64, c: f64) -> f64 {
+        if !self.temperature || c == 0.0 {
+            1.0
+        } else {
+            (-(t - self.t0) * c).exp()
+        }
+    }
+}
+
+/// Pressure-only parts of the material at one node (cached per node; Eq. 4.3/4.4).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NodeP {
+    pub p: f64,
+    bound: f64,
+    tc1: f64,
+    tc2: f64,
+    pub le: f64,
+    lp: f64,
+}
+
+impl Resolved {
+    /// Pressure-dependent material parts at normalized position (xi, eta).
+    pub(crate) fn node_p(&self, pt: &Patch, xi: f64, eta: f64) -> NodeP {
+        let r = self;
+        let rr = if pt.line {
+            xi * xi
+        } else {
+            xi * xi + eta * eta
+        };
+        let p = if rr >= 1.0 {
+            0.0
+        } else {
+            pt.p0 * (1.0 - rr).sqrt()
+        };
+        let bound = if r.parabolic {
+            // Kalker's parabolic pressure with the same total force: 2 F_N/(pi a b) = 4/3 p0 for the
+            // ellipse; 3 pi/8 p0 for the line contact.
+            let k = if pt.line {
+                3.0 * std::f64::consts::PI / 8.0
+            } else {
+                4.0 / 3.0
+            };
+            r.mu * (k * pt.p0 * (1.0 - rr)).max(0.0)
+        } else {
+            r.mu * p
+        };
+        if p <= 0.0 {
+            return NodeP {
+                p,
+                bound,
+                tc1: 0.0,
+                tc2: 0.0,
+                le: 0.0,
+                lp: 1.0,
+            };
+        }
+        let le = if r.layer_el {
+            r.le0 / r.pf(p, r.le_p)
+        } else {
+            0.0
+        };
+        // equal coefficients share one exponential (Tab. 4.1 has three equal ones)
+        let f1 = r.pf(p, r.tc1_p);
+        let f2 = if r.tc2_p == r.tc1_p {
+            f1
+        } else {
+            r.pf(p, r.tc2_p)
+        };
+        let fp = if r.lp_p == r.tc1_p {
+            f1
+        } else if r.lp_p == r.tc2_p {
+            f2
+        } else {
+            r.pf(p, r.lp_p)
+        };
+        NodeP {
+            p,
+            bound,
+            tc1: r.tc10 * f1,
+            tc2: r.tc20 * f2,
+            le,
+            lp: r.lp0 / fp,
+        }
+    }
+
+    /// Material at temperature `t` (Eq. 4.3, 4.4) from the node's pressure parts, formula
+    /// effects not applied.
+    #[inline]
+    pub(crate) fn material_base(&self, np: &NodeP, t: f64) -> Material {
+        let r = self;
+        if r.coulomb {
+            let le = np.le / r.tf(t, r.le_t);
+            return Material {
+                tc1: np.bound,
+                tc2: np.bound,
+                lp: 1.0,
+                le,
+            };
+        }
+        if !r.plastic {
+            let le = np.le / r.tf(t, r.le_t);
+            return Material {
+                tc1: f64::INFINITY,
+                tc2: f64::INFINITY,
+                lp: 1.0,
+                le,
+            };
+        }
+        if np.p <= 0.0 {
+            return Material {
+                tc1: 0.0,
+                tc2: 0.0,
+                lp: 1.0,
+                le: 0.0,
+            };
+        }
+        let (tf1, tf2, tfp, tfe) = if r.temperature {
+            // equal coefficients share one exponential (Tab. 4.1 has three equal ones)
+            let tf1 = r.tf(t, r.tc1_t);
+            let tf2 = if r.tc2_t == r.tc1_t {
+                tf1
+            } else {
+                r.tf(t, r.tc2_t)
+            };
+            let tfp = if r.lp_t == r.tc1_t {
+                tf1
+            } else if r.lp_t == r.tc2_t {
+                tf2
+            } else {
+                r.tf(t, r.lp_t)
+            };
+            (tf1, tf2, tfp, r.tf(t, r.le_t))
+        } else {
+            (1.0, 1.0, 1.0, 1.0)
+        };
+        let tc2 = np.tc2 * tf2;
+        let tc1 = (np.tc1 * tf1).min(tc2);
+        Material {
+            tc1,
+            tc2,
+            lp: np.lp / tfp,
+            le: np.le / tfe,
+        }
+    }
+}
+
+/// The layer's material alone at normal stress `p` (Pa) and temperature `t` (degC), from
+/// the configuration's parameters and effects (Eq. 4.3, 4.4; formula effects not applied).
+pub fn layer_material(cfg: &Config, p: f64, t: f64) -> Material {
+    let r = Resolved::from_config(cfg);
+    let le = if r.layer_el {
+        r.le0 / r.pf(p, r.le_p) / r.tf(t, r.le_t)
+    } else {
+        0.0
+    };
+    let tc2 = r.tc20 * r.pf(p, r.tc2_p) * r.tf(t, r.tc2_t);
+    let tc1 = (r.tc10 * r.pf(p, r.tc1_p) * r.tf(t, r.tc1_t)).min(tc2);
+    Material {
+        tc1,
+        tc2,
+        lp: r.lp0 / r.pf(p, r.lp_p) / r.tf(t, r.lp_t),
+        le,
+    }
+}
