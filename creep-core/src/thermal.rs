@@ -59,6 +59,20 @@ impl Kernel {
             .sum()
     }
 
+    /// The factors of a sub-step of length `h`.
+    pub fn factors(&self, h: f64) -> StepFactors {
+        let (decay, gain) = self.step_factors(h);
+        let mut wdecay = [0.0; N_KERNEL];
+        for ((x, w), d) in wdecay.iter_mut().zip(self.weights.iter()).zip(decay.iter()) {
+            *x = w * d;
+        }
+        StepFactors {
+            decay,
+            gain,
+            wdecay,
+        }
+    }
+
     /// Decay factors exp(-s_k h) and increments (1 - exp(-s_k h))/s_k for a sub-step `h`.
     pub fn step_factors(&self, h: f64) -> ([f64; N_KERNEL], [f64; N_KERNEL]) {
         let mut decay = [1.0; N_KERNEL];
@@ -73,6 +87,55 @@ impl Kernel {
             };
         }
         (decay, gain)
+    }
+}
+
+/// The kernel's factors for one sub-step length h: decay exp(-s_k h), gain
+/// (1 - exp(-s_k h))/s_k, and weighted decay w_k exp(-s_k h) for the history sum.
+#[derive(Clone, Copy, Debug)]
+pub struct StepFactors {
+    /// Decay factors exp(-s_k h).
+    pub decay: [f64; N_KERNEL],
+    /// Gains (1 - exp(-s_k h))/s_k, s.
+    pub gain: [f64; N_KERNEL],
+    /// Weighted decays w_k exp(-s_k h).
+    pub wdecay: [f64; N_KERNEL],
+}
+
+impl StepFactors {
+    /// Factors of a sub-step without heat flow: the accumulators keep their values.
+    pub fn identity(h: f64) -> Self {
+        StepFactors {
+            decay: [1.0; N_KERNEL],
+            gain: [h; N_KERNEL],
+            wdecay: [0.0; N_KERNEL],
+        }
+    }
+
+    /// History sum sum_k w_k exp(-s_k h) A_k of Eq. 4.35 (all but the newest interval).
+    #[inline]
+    pub fn history(&self, acc: &[f64; N_KERNEL]) -> f64 {
+        // four partial sums, so that the compiler keeps them in SIMD lanes
+        let mut part = [0.0; 4];
+        let (w4, a4) = (self.wdecay.chunks_exact(4), acc.chunks_exact(4));
+        let (wr, ar) = (w4.remainder(), a4.remainder());
+        for (w, a) in w4.zip(a4) {
+            for l in 0..4 {
+                part[l] += w[l] * a[l];
+            }
+        }
+        for (w, a) in wr.iter().zip(ar) {
+            part[0] += w * a;
+        }
+        (part[0] + part[1]) + (part[2] + part[3])
+    }
+
+    /// Accumulator update A_k <- exp(-s_k h) A_k + q (1 - exp(-s_k h))/s_k.
+    #[inline]
+    pub fn accumulate(&self, acc: &mut [f64; N_KERNEL], q: f64) {
+        for ((a, d), g) in acc.iter_mut().zip(self.decay.iter()).zip(self.gain.iter()) {
+            *a = d * *a + q * g;
+        }
     }
 }
 
@@ -127,8 +190,9 @@ pub fn solve_self_heating<S: Copy>(
     let old_q = q_prev;
     // Solve T = t_hist + self_c q(T) for the smallest root above t_hist (the temperature
     // the bristle reaches first while heating up; q(T) may rise with T where softening
-    // turns an elastic bristle plastic): fixed-point steps upward while
-    // g(T) = t_hist + self_c q(T) - T > 0, then Illinois regula falsi once bracketed;
+    // turns an elastic bristle plastic): secant steps upward (fixed-point steps where the
+    // secant does not point up) while g(T) = t_hist + self_c q(T) - T > 0, then Illinois
+    // regula falsi once bracketed;
     // tolerance `t_tol`: 1e-4 relative change of the softening factors.
     let g_of = |q: f64, t: f64| t_hist + self_c * q - t;
     let (mut ta, mut ga) = (t_hist, self_c * q);
@@ -145,9 +209,9 @@ pub fn solve_self_heating<S: Copy>(
             tb = tp;
             ta = tp;
         } else if gp > 0.0 {
+            tb = secant_up(ta, ga, tp, gp);
             ta = tp;
             ga = gp;
-            tb = tp + gp;
         } else {
             tb = tp;
         }
@@ -166,9 +230,10 @@ pub fn solve_self_heating<S: Copy>(
             break;
         }
         if gb > 0.0 {
+            let next = secant_up(ta, ga, tb, gb);
             ta = tb;
             ga = gb;
-            tb += gb;
+            tb = next;
         } else {
             bracketed = true;
             break;
@@ -203,6 +268,17 @@ pub fn solve_self_heating<S: Copy>(
         }
     }
     (ns, q)
+}
+
+/// The next trial temperature above `tb` while g > 0 at both `ta` < `tb`: the secant's zero
+/// where g falls, else the fixed-point step tb + g(tb).
+#[inline]
+fn secant_up(ta: f64, ga: f64, tb: f64, gb: f64) -> f64 {
+    if gb < ga && tb > ta {
+        tb + gb * (tb - ta) / (ga - gb)
+    } else {
+        tb + gb
+    }
 }
 
 /// Exact Eq. 4.35 for a heat history `q[i]` on intervals ending at `t[i]` (t_0 = 0 implied):

@@ -41,8 +41,13 @@ fn step_0p1_to_1_percent_settles_after_2a_over_v() {
 #[test]
 fn steady_state_is_the_limit_of_the_transient_model() {
     // constant inputs, arbitrary (non-aligned) time steps, temperature on: after 3 a/v the
-    // transient grid equals the steady march
-    for name in ["table4.1", "fastsim", "wet"] {
+    // transient grid equals the steady march. The reference scheme (one sub-step per cell, as
+    // the march) must agree within 0.5 %; the default continuous scheme (sub-steps of up to
+    // 4 cells, not aligned with the march's) within the preset's grid-convergence error of
+    // docs/model.md section 9 (80x21 vs 320x84: table4.1 0.75 %, fastsim 0.18 %, wet 3.2 %:
+    // wet's tau_c1 halves every 1.3 K, so its discretisation error is the largest).
+    use creep_core::engine::Scheme;
+    for (name, tol_cont) in [("table4.1", 0.0075), ("fastsim", 0.005), ("wet", 0.032)] {
         let cfg = preset(name);
         for cx in [0.002, 0.05, 0.3] {
             let i = Inputs {
@@ -52,18 +57,21 @@ fn steady_state_is_the_limit_of_the_transient_model() {
                 ..Inputs::default()
             };
             let target = steady(&cfg, &i).f;
-            let mut m = Model::new(&cfg).unwrap();
-            m.steady(&Inputs { cx: 0.0, ..i }).unwrap();
-            let mut t = 0.0;
-            while t < 3.0 * 7.63e-3 / 10.0 {
-                m.step(3.7e-5, &i).unwrap();
-                t += 3.7e-5;
+            for (scheme, tol) in [(Scheme::CellsMarch, 0.005), (Scheme::Continuous, tol_cont)] {
+                let mut m = creep_core::Contact::new(&cfg).unwrap();
+                m.set_scheme(scheme);
+                m.steady(&Inputs { cx: 0.0, ..i }).unwrap();
+                let mut t = 0.0;
+                while t < 3.0 * 7.63e-3 / 10.0 {
+                    m.step(3.7e-5, &i).unwrap();
+                    t += 3.7e-5;
+                }
+                let f = m.outputs().f;
+                assert!(
+                    (f - target).abs() / target.abs() < tol,
+                    "{name} cx = {cx} {scheme:?}: transient {f} vs steady {target}"
+                );
             }
-            let f = m.outputs().f;
-            assert!(
-                (f - target).abs() / target.abs() < 0.005,
-                "{name} cx = {cx}: transient {f} vs steady {target}"
-            );
         }
     }
 }
@@ -100,6 +108,7 @@ fn marching_new_bristles_is_bit_identical_to_the_sub_step_loop() {
     for name in ["table4.1", "fastsim", "wet"] {
         let cfg = with_grid(preset(name), 30, 9);
         let mut fast = Contact::new(&cfg).unwrap();
+        fast.set_scheme(creep_core::engine::Scheme::CellsMarch);
         let mut plain = Contact::new(&cfg).unwrap();
         plain.set_march_new_bristles(false);
         let i0 = Inputs {

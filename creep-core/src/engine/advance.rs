@@ -3,7 +3,7 @@
 use super::{Contact, V_STANDSTILL};
 use crate::bristle::{self, BristleState};
 use crate::material::NodeP;
-use crate::thermal::{self, N_KERNEL};
+use crate::thermal::{self, StepFactors, N_KERNEL};
 
 /// Per-sub-step kinematic context of one strip.
 pub(super) struct Kin {
@@ -58,7 +58,7 @@ impl Contact {
         [x, y]: [f64; 2],
         s: &mut BristleState,
         acc: &mut [f64; N_KERNEL],
-        fac: &([f64; N_KERNEL], [f64; N_KERNEL]),
+        fac: &StepFactors,
     ) -> f64 {
         let d = k.dist;
         let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
@@ -66,10 +66,7 @@ impl Contact {
         // acc[0] integrates all heat ever received (rate 0): zero means a cold history
         let warm = acc[0] != 0.0;
         let t_hist = if self.r.temperature && k.heat && warm {
-            let mut sum = 0.0;
-            for ((w, d), a) in self.kernel.weights.iter().zip(fac.0.iter()).zip(acc.iter()) {
-                sum += w * d * a;
-            }
+            let sum = fac.history(acc);
             k.t_bulk + k.alpha_c * sum
         } else {
             k.t_bulk
@@ -148,10 +145,7 @@ impl Contact {
         ns.q = q;
         *s = ns;
         if self.r.temperature && k.heat && (warm || q > 0.0) {
-            let qw = q; // alpha is folded into alpha_c
-            for ((a, d), g) in acc.iter_mut().zip(fac.0.iter()).zip(fac.1.iter()) {
-                *a = d * *a + qw * g;
-            }
+            fac.accumulate(acc, q); // alpha is folded into alpha_c
         }
         q
     }
@@ -190,11 +184,11 @@ impl Contact {
     }
 
     /// Kernel factors of a sub-step of length `h` (identity when no heat flows).
-    pub(super) fn factors(&self, h: f64, heat: bool) -> ([f64; N_KERNEL], [f64; N_KERNEL]) {
+    pub(super) fn factors(&self, h: f64, heat: bool) -> StepFactors {
         if self.r.temperature && heat {
-            self.kernel.step_factors(h)
+            self.kernel.factors(h)
         } else {
-            ([1.0; N_KERNEL], [h; N_KERNEL])
+            StepFactors::identity(h)
         }
     }
 
@@ -208,7 +202,7 @@ impl Contact {
         j: usize,
         xi_end: f64,
         kin: &Kin,
-        fac: &([f64; N_KERNEL], [f64; N_KERNEL]),
+        fac: &StepFactors,
         s: &mut BristleState,
         acc: &mut [f64; N_KERNEL],
     ) {
@@ -291,5 +285,85 @@ impl Contact {
         };
         self.acc[id] = [0.0; N_KERNEL];
         self.phase[j] = 0.0;
+    }
+}
+
+impl Contact {
+    /// [`super::Scheme::Continuous`]: advances every strip by `dt` (v > 0). The bristles that
+    /// stay in the contact move by v dt in `n_sub` equal sub-steps of at most
+    /// [`super::MAX_SUBSTEP_CELLS`] cells (material at each sub-step's end, Eq. 4.5); those
+    /// that enter during the step are marched cell by cell from the leading edge (their
+    /// whole history is this step's constant inputs, as in the steady march); those that
+    /// leave are not moved. The number of entries is computed in closed form, so the work
+    /// of a step is bounded by about one sweep times `n_sub`, however far it rolls: a step
+    /// that rolls past the whole contact (v dt >= 2a) is the steady state of its inputs.
+    pub(super) fn advance_continuous(&mut self, dt: f64) {
+        let v = self.inputs.v;
+        let a = self.patch.a;
+        let nx = self.nx;
+        let dist = v * dt;
+        if dist >= 2.0 * a {
+            // every bristle enters during the step: the steady state of the step's inputs
+            for j in 0..self.ny {
+                self.head[j] = 0;
+                self.phase[j] = 0.0;
+                self.march_new(j, nx + 1, 0.0);
+            }
+            return;
+        }
+        let d_max = super::MAX_SUBSTEP_CELLS * 2.0 * a / nx as f64;
+        let n_sub_eff = ((dist / d_max) * (1.0 - 1e-12)).ceil().max(1.0);
+        let (h, d) = (dt / n_sub_eff, dist / n_sub_eff);
+        let kin = self.kin(h, d);
+        let fac = self.factors(h, kin.heat);
+        let mut st = std::mem::take(&mut self.st);
+        let mut accs = std::mem::take(&mut self.acc);
+        for j in 0..self.ny {
+            let dx = 2.0 * self.ell[j] * a / nx as f64;
+            let dxi = 2.0 * self.ell[j] / nx as f64;
+            let ph0 = self.phase[j];
+            let cells = ph0 + dist / dx;
+            let wraps_f = (cells + 1e-9).floor();
+            let wraps = if wraps_f > nx as f64 {
+                nx + 1
+            } else {
+                wraps_f as usize
+            };
+            let phase_end = if wraps > nx {
+                (cells - wraps_f).max(0.0)
+            } else {
+                (cells - wraps_f).clamp(0.0, 1.0 - f64::EPSILON)
+            };
+            let phase_end = if phase_end < 1e-9 { 0.0 } else { phase_end };
+            if wraps <= nx {
+                // old slot s ends in slot s + wraps at phase_end; it is moved if it is still
+                // inside then (the last slot only at phase 0)
+                for slot in 0..=nx - wraps {
+                    if slot + wraps == nx && phase_end > 0.0 {
+                        continue;
+                    }
+                    let xi0 = self.ell[j] - (slot as f64 + ph0) * dxi;
+                    let id = j * (nx + 1) + (self.head[j] + slot) % (nx + 1);
+                    let (s, ac) = (&mut st[id], &mut accs[id]);
+                    for i in 1..=n_sub_eff as usize {
+                        let xi_end = xi0 - i as f64 * d / a;
+                        self.move_bristle(j, xi_end, &kin, &fac, s, ac);
+                    }
+                }
+            }
+            self.st = std::mem::take(&mut st);
+            self.acc = std::mem::take(&mut accs);
+            for _ in 0..wraps.min(nx + 1) {
+                self.enter_bristle(j);
+            }
+            self.phase[j] = phase_end;
+            if wraps > 0 {
+                self.march_new(j, wraps.min(nx + 1), phase_end * dx);
+            }
+            st = std::mem::take(&mut self.st);
+            accs = std::mem::take(&mut self.acc);
+        }
+        self.st = st;
+        self.acc = accs;
     }
 }

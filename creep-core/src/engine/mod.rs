@@ -38,6 +38,26 @@ use crate::kalker;
 use crate::material::Resolved;
 use crate::thermal::{self, Kernel, N_KERNEL};
 
+/// How [`Contact::step`] advances the bristles that were in the contact before the step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scheme {
+    /// Default: bristles move continuously, in sub-steps of at most [`MAX_SUBSTEP_CELLS`]
+    /// cells; bristles that enter during the step are marched cell by cell. A step costs
+    /// about one sweep over the grid, whatever its length.
+    Continuous,
+    /// Reference: one sub-step per cell crossing for every bristle; new bristles by a march.
+    CellsMarch,
+    /// Reference: one sub-step per cell crossing for every bristle, no march (slowest).
+    Cells,
+}
+
+/// Normal forces at or below this (N) are lift-off: the contact carries nothing. (The
+/// contact length shrinks like F_N^(1/3); a vanishing contact is not a tiny one.)
+pub const F_LIFT_OFF: f64 = 1e-3;
+
+/// Longest sub-step of a bristle in [`Scheme::Continuous`], in cells of the central strip.
+pub const MAX_SUBSTEP_CELLS: f64 = 4.0;
+
 /// The persistent contact: geometry, bristle grid and its state.
 #[derive(Clone, Debug)]
 pub struct Contact {
@@ -66,8 +86,8 @@ pub struct Contact {
     warnings: Vec<String>,
     /// Temperature tolerance of the local solve, K: 1e-4 / (largest temperature coefficient).
     t_tol: f64,
-    /// Compute bristles that enter during a step by a march (identical results, less work).
-    march: bool,
+    /// How a step advances the bristles (see [`Scheme`]).
+    scheme: Scheme,
     /// Values of the extra (data) columns the formula effects use, by name.
     extra: Vec<(String, f64)>,
     /// Formula variables: local placeholders, operating point, columns (see `formula`).
@@ -134,7 +154,7 @@ impl Contact {
             out: Outputs::default(),
             initialized: false,
             warnings: Vec::new(),
-            march: true,
+            scheme: Scheme::Continuous,
             extra: Vec::new(),
             fvars: Vec::new(),
             fstatic: [1.0; 5],
@@ -184,7 +204,7 @@ impl Contact {
 
     fn set_inputs(&mut self, inputs: &Inputs) -> Result<()> {
         inputs.validate()?;
-        if inputs.fn_n > 0.0 {
+        if inputs.fn_n > F_LIFT_OFF {
             self.patch = self.patch_for(inputs.fn_n)?;
             let (a, b) = (self.patch.a, self.patch.b);
             let (ka, kb) = if self.patch.line {
@@ -223,82 +243,94 @@ impl Contact {
             return Ok(out);
         }
         self.set_inputs(inputs)?;
-        if inputs.fn_n <= 0.0 {
+        if inputs.fn_n <= F_LIFT_OFF {
             return Ok(self.lift_off());
         }
-        let v = inputs.v;
-        let a = self.patch.a;
-        for j in 0..self.ny {
-            let dx = 2.0 * self.ell[j] * a / self.nx as f64;
-            if v <= V_STANDSTILL || dt == 0.0 {
+        if inputs.v <= V_STANDSTILL || dt == 0.0 {
+            for j in 0..self.ny {
                 let ph = self.phase[j];
                 self.substep_strip(j, dt, 0.0, ph, 0, self.nx + 1);
-                continue;
             }
-            let mut remaining = v * dt;
-            let tol = 1e-9 * dx;
-            // Bristles that enter during this step see only this step's (constant) inputs:
-            // full cells, then the final partial move. They are computed afterwards by a march
-            // (`march_new`), which performs exactly the updates the sub-step loop would, so the
-            // loop only advances the bristles that were in the contact before the step
-            // (slots >= n_new). With v dt >= 2a the whole step costs one steady march.
-            let mut n_new = 0usize;
-            let mut d_end = 0.0;
-            // Bristles that will leave before the end of the step need no update at all: count
-            // this step's entries first (same arithmetic as the loop below).
-            let wraps = {
-                let (mut rem, mut ph, mut w) = (remaining, self.phase[j], 0usize);
-                while rem > tol {
-                    let to_next = (1.0 - ph) * dx;
-                    if rem >= to_next - tol {
-                        w += 1;
-                        rem -= to_next;
-                        ph = 0.0;
-                    } else {
-                        rem = 0.0;
-                    }
-                }
-                w
-            };
-            while remaining > tol {
-                let to_next = (1.0 - self.phase[j]) * dx;
-                if remaining >= to_next - tol {
-                    // end positions are one node further (phase 1), then the slots shift
-                    if !self.march {
-                        self.substep_strip(j, to_next / v, to_next, 1.0, 0, self.nx + 1);
-                    } else if n_new + (wraps - n_new) <= self.nx {
-                        self.substep_strip(
-                            j,
-                            to_next / v,
-                            to_next,
-                            1.0,
-                            n_new,
-                            self.nx + 1 - (wraps - n_new),
-                        );
-                    }
-                    // all bristles moved one node: the slot numbering shifts by recycling the oldest
-                    self.enter_bristle(j);
-                    n_new += 1;
-                    remaining -= to_next;
-                } else {
-                    let ph = self.phase[j] + remaining / dx;
-                    if !self.march {
-                        self.substep_strip(j, remaining / v, remaining, ph, 0, self.nx + 1);
-                    } else if n_new <= self.nx {
-                        self.substep_strip(j, remaining / v, remaining, ph, n_new, self.nx + 1);
-                    }
-                    self.phase[j] = ph;
-                    d_end = remaining;
-                    remaining = 0.0;
-                }
-            }
-            if n_new > 0 && self.march {
-                self.march_new(j, n_new.min(self.nx + 1), d_end);
+        } else if self.scheme == Scheme::Continuous {
+            self.advance_continuous(dt);
+        } else {
+            for j in 0..self.ny {
+                self.advance_cells(j, dt);
             }
         }
         self.time += dt;
         self.out = self.integrate();
         Ok(self.out)
+    }
+
+    /// The reference scheme for strip `j`: every bristle gets one sub-step per cell crossing,
+    /// cut at the instants a new bristle enters (the steady march's sub-steps exactly). Costs
+    /// about (cells travelled) x (bristles) moves per step.
+    fn advance_cells(&mut self, j: usize, dt: f64) {
+        let v = self.inputs.v;
+        let a = self.patch.a;
+        let march = self.scheme == Scheme::CellsMarch;
+        let dx = 2.0 * self.ell[j] * a / self.nx as f64;
+        let mut remaining = v * dt;
+        let tol = 1e-9 * dx;
+        // Bristles that enter during this step see only this step's (constant) inputs:
+        // full cells, then the final partial move. They are computed afterwards by a march
+        // (`march_new`), which performs exactly the updates the sub-step loop would, so the
+        // loop only advances the bristles that were in the contact before the step
+        // (slots >= n_new). With v dt >= 2a the whole step costs one steady march.
+        let mut n_new = 0usize;
+        let mut d_end = 0.0;
+        // Bristles that will leave before the end of the step need no update at all: count
+        // this step's entries first (same arithmetic as the loop below).
+        let wraps = {
+            let (mut rem, mut ph, mut w) = (remaining, self.phase[j], 0usize);
+            while rem > tol {
+                let to_next = (1.0 - ph) * dx;
+                if rem >= to_next - tol {
+                    w += 1;
+                    rem -= to_next;
+                    ph = 0.0;
+                } else {
+                    rem = 0.0;
+                }
+            }
+            w
+        };
+        while remaining > tol {
+            let to_next = (1.0 - self.phase[j]) * dx;
+            if remaining >= to_next - tol {
+                // end positions are one node further (phase 1), then the slots shift
+                if !march {
+                    self.substep_strip(j, to_next / v, to_next, 1.0, 0, self.nx + 1);
+                } else if n_new + (wraps - n_new) <= self.nx {
+                    self.substep_strip(
+                        j,
+                        to_next / v,
+                        to_next,
+                        1.0,
+                        n_new,
+                        self.nx + 1 - (wraps - n_new),
+                    );
+                }
+                // all bristles moved one node: the slot numbering shifts by recycling the oldest
+                self.enter_bristle(j);
+                n_new += 1;
+                remaining -= to_next;
+            } else {
+                let ph = self.phase[j] + remaining / dx;
+                if !march {
+                    self.substep_strip(j, remaining / v, remaining, ph, 0, self.nx + 1);
+                } else if n_new <= self.nx {
+                    self.substep_strip(j, remaining / v, remaining, ph, n_new, self.nx + 1);
+                }
+                self.phase[j] = ph;
+                d_end = remaining;
+                remaining = 0.0;
+            }
+        }
+        if n_new > 0 && march {
+            self.march_new(j, n_new.min(self.nx + 1), d_end);
+        }
     }
 
     fn lift_off(&mut self) -> Outputs {
@@ -325,7 +357,7 @@ impl Contact {
     pub fn steady(&mut self, inputs: &Inputs) -> Result<Outputs> {
         self.set_inputs(inputs)?;
         self.initialized = true;
-        if inputs.fn_n <= 0.0 {
+        if inputs.fn_n <= F_LIFT_OFF {
             return Ok(self.lift_off());
         }
         // the steady state is the grid a transient run reaches with constant inputs: every
@@ -412,7 +444,16 @@ impl Contact {
     /// bristle). For tests that show both give identical results.
     #[doc(hidden)]
     pub fn set_march_new_bristles(&mut self, on: bool) {
-        self.march = on;
+        self.scheme = if on {
+            Scheme::CellsMarch
+        } else {
+            Scheme::Cells
+        };
+    }
+
+    /// Chooses how a step advances the bristles (default [`Scheme::Continuous`]).
+    pub fn set_scheme(&mut self, scheme: Scheme) {
+        self.scheme = scheme;
     }
 
     /// Grid size (nx, ny actually used; a line contact has one strip).
