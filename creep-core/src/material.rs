@@ -107,7 +107,7 @@ impl Resolved {
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct NodeP {
     pub p: f64,
-    bound: f64,
+    pub bound: f64,
     tc1: f64,
     tc2: f64,
     pub le: f64,

@@ -199,6 +199,13 @@ pub fn solve_self_heating<S: Copy>(
     // predictor: this bristle's heat of its previous sub-step, when it lies inside
     // [t_hist, t_hist + self_c q(t_hist)]; else the fixed-point step from t_hist
     let mut tb = ta + ga;
+    if ga < tol {
+        // the move's own heat warms it by less than the tolerance (e.g. an adhering bristle
+        // whose q is a rounding residue): t_hist is the root
+        return (ns, q);
+    }
+    let mut bracketed = false;
+    let mut gb = 0.0;
     if old_q > 0.0 && self_c * old_q < ga {
         let tp = t_hist + self_c * old_q;
         let (sp, qp) = eval(tp);
@@ -213,13 +220,16 @@ pub fn solve_self_heating<S: Copy>(
             ta = tp;
             ga = gp;
         } else {
+            // the root lies between t_hist and the predictor
+            ns = sp;
+            q = qp;
             tb = tp;
+            gb = gp;
+            bracketed = true;
         }
     }
-    let mut bracketed = false;
-    let mut gb = 0.0;
     for _ in 0..60 {
-        if tb == ta {
+        if bracketed || tb == ta {
             break;
         }
         let (sb, qb) = eval(tb);

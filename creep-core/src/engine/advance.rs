@@ -206,20 +206,85 @@ impl Contact {
         s: &mut BristleState,
         acc: &mut [f64; N_KERNEL],
     ) {
-        let a = self.patch.a;
         let dxi = 2.0 * self.ell[j] / self.nx as f64;
+        let np = self.r.node_p(
+            &self.patch,
+            xi_end.max(-self.ell[j] + 0.5 * dxi),
+            self.eta[j],
+        );
+        self.move_bristle_with(j, xi_end, &np, kin, fac, s, acc);
+    }
+
+    /// [`Self::move_bristle`] with the pressure parts `np` of the end node given (the march
+    /// takes them from the per-load cache of the lattice nodes).
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn move_bristle_with(
+        &self,
+        j: usize,
+        xi_end: f64,
+        np: &NodeP,
+        kin: &Kin,
+        fac: &StepFactors,
+        s: &mut BristleState,
+        acc: &mut [f64; N_KERNEL],
+    ) {
+        let a = self.patch.a;
         let y = if self.patch.line {
             0.0
         } else {
             self.eta[j] * self.patch.b
         };
         let x_mid = a * (xi_end + 0.5 * kin.dist / a);
-        let np = self.r.node_p(
-            &self.patch,
-            xi_end.max(-self.ell[j] + 0.5 * dxi),
-            self.eta[j],
-        );
-        self.update_bristle(kin, &np, [x_mid, y], s, acc, fac);
+        if self.r.temperature || self.has_modifiers() {
+            self.update_bristle(kin, np, [x_mid, y], s, acc, fac);
+        } else {
+            self.update_bristle_cold(kin, np, [x_mid, y], s);
+        }
+    }
+
+    /// [`Self::update_bristle`] without temperature and modifiers (FASTSIM, isothermal ECF):
+    /// the same operations without the temperature solve and the heat kernel.
+    #[inline]
+    fn update_bristle_cold(&self, k: &Kin, np: &NodeP, [x, y]: [f64; 2], s: &mut BristleState) {
+        let d = k.dist;
+        let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
+        let m = self.r.material_base(np, k.t_bulk);
+        let lxe = k.lx + m.le;
+        let lye = k.ly + m.le;
+        let lse = k.ls + m.le;
+        let dtau = [
+            d * (k.cx / lxe - k.cs * y / lse),
+            d * (k.cy / lye + k.cs * x / lse),
+        ];
+        let old = s.tau;
+        bristle::update(s, du, dtau, &m, [lxe, lye], self.r.rule);
+        s.q = if k.heat {
+            let dux = du[0] - lxe * (s.tau[0] - old[0]);
+            let duy = du[1] - lye * (s.tau[1] - old[1]);
+            (self.r.kq * (s.tau[0] * dux + s.tau[1] * duy) / k.h).max(0.0)
+        } else {
+            0.0
+        };
+        s.temp = k.t_bulk;
+    }
+
+    /// Pressure parts of the lattice nodes k = 1..=nx of strip `j` at the current load, cached
+    /// (recomputed when the peak pressure changes).
+    fn lattice_nodes(&mut self, j: usize) -> Vec<NodeP> {
+        let nx = self.nx;
+        let mut c = std::mem::take(&mut self.np_cache[j]);
+        if self.np_cache_p0[j] != self.patch.p0 || c.len() != nx + 1 {
+            let dxi = 2.0 * self.ell[j] / nx as f64;
+            c.clear();
+            c.push(NodeP::default());
+            for k in 1..=nx {
+                let xi = (self.ell[j] - k as f64 * dxi).max(-self.ell[j] + 0.5 * dxi);
+                c.push(self.r.node_p(&self.patch, xi, self.eta[j]));
+            }
+            self.np_cache_p0[j] = self.patch.p0;
+        }
+        c
     }
 
     /// States of the `count` bristles that entered strip `j` during the current step: the one
@@ -242,6 +307,13 @@ impl Contact {
             ..BristleState::default()
         };
         let mut acc = [0.0; N_KERNEL];
+        if d_end == 0.0 && self.coulomb_path() {
+            self.march_coulomb(j, count, &kin_full);
+            return;
+        }
+        // without temperature the accumulators stay zero: no copies
+        let hot = self.r.temperature;
+        let nodes = self.lattice_nodes(j);
         for k in 0..count {
             let id = self.idx(j, k);
             // slot nx is past the trailing edge once the phase is > 0: not moved (as in the loop)
@@ -256,15 +328,20 @@ impl Contact {
                     &mut pacc,
                 );
                 self.st[id] = ps;
-                self.acc[id] = pacc;
+                if hot {
+                    self.acc[id] = pacc;
+                }
             } else {
                 self.st[id] = s;
-                self.acc[id] = acc;
+                if hot {
+                    self.acc[id] = acc;
+                }
             }
             if k + 1 < count {
-                self.move_bristle(
+                self.move_bristle_with(
                     j,
                     self.ell[j] - (k as f64 + 1.0) * dxi,
+                    &nodes[k + 1],
                     &kin_full,
                     &fac_full,
                     &mut s,
@@ -272,6 +349,84 @@ impl Contact {
                 );
             }
         }
+        self.np_cache[j] = nodes;
+    }
+
+    /// True if the dedicated FASTSIM march applies: Coulomb bound, no layer elasticity, no
+    /// temperature, no modifiers (the `fastsim` preset).
+    #[inline]
+    fn coulomb_path(&self) -> bool {
+        self.r.coulomb
+            && !self.r.layer_el
+            && !self.r.temperature
+            && self.r.rule == bristle::Rule::ElasticUnloading
+            && !self.has_modifiers()
+    }
+
+    /// The march of [`Self::march_new`] at phase 0 for FASTSIM (see [`Self::coulomb_path`]):
+    /// Kalker's brush with the radial return onto the Coulomb bound mu p, in one tight loop
+    /// with the same operations as [`bristle::update`] for tc1 = tc2 = mu p and L_e = 0
+    /// (results equal the general path to rounding: reciprocals are multiplied, not divided).
+    fn march_coulomb(&mut self, j: usize, count: usize, kin: &Kin) {
+        let nx = self.nx;
+        let nodes = self.lattice_nodes(j);
+        let a = self.patch.a;
+        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let y = if self.patch.line {
+            0.0
+        } else {
+            self.eta[j] * self.patch.b
+        };
+        let d = kin.dist;
+        let (ilx, ily, ils) = (1.0 / kin.lx, 1.0 / kin.ly, 1.0 / kin.ls);
+        let (lx, ly) = (kin.lx, kin.ly);
+        let inv_h = if kin.heat { self.r.kq / kin.h } else { 0.0 };
+        // increments that do not depend on the position along the strip
+        let du0 = d * (kin.cx - kin.cs * y);
+        let dt0 = d * (kin.cx * ilx - kin.cs * y * ils);
+        let mut s = BristleState {
+            temp: self.inputs.t_bulk,
+            ..BristleState::default()
+        };
+        let base = j * (nx + 1);
+        let head = self.head[j];
+        for k in 0..count {
+            self.st[base + (head + k) % (nx + 1)] = s;
+            if k + 1 >= count {
+                break;
+            }
+            let xi_end = self.ell[j] - (k as f64 + 1.0) * dxi;
+            let x = a * (xi_end + 0.5 * d / a);
+            let du = [du0, d * (kin.cy + kin.cs * x)];
+            let dtau = [dt0, d * (kin.cy * ily + kin.cs * x * ils)];
+            let g = nodes[k + 1].bound;
+            let old = s.tau;
+            s.u = [s.u[0] + du[0], s.u[1] + du[1]];
+            let tr = [old[0] + dtau[0], old[1] + dtau[1]];
+            let n2 = tr[0] * tr[0] + tr[1] * tr[1];
+            if g.is_nan() || g <= 0.0 {
+                s.tau = [0.0, 0.0];
+                s.regime = bristle::Regime::Sliding;
+            } else if n2 <= g * g {
+                s.tau = tr;
+                s.regime = bristle::Regime::Elastic;
+            } else {
+                let ntr = n2.sqrt();
+                let dir = [tr[0] / ntr, tr[1] / ntr];
+                let kk = ((dir[0] * ilx).powi(2) + (dir[1] * ily).powi(2)).sqrt();
+                s.sh += (ntr - g) / kk;
+                s.tau = [g * dir[0], g * dir[1]];
+                s.regime = bristle::Regime::Sliding;
+            }
+            s.q = if kin.heat {
+                let dux = du[0] - lx * (s.tau[0] - old[0]);
+                let duy = du[1] - ly * (s.tau[1] - old[1]);
+                ((s.tau[0] * dux + s.tau[1] * duy) * inv_h).max(0.0)
+            } else {
+                0.0
+            };
+        }
+        self.np_cache[j] = nodes;
     }
 
     /// A new bristle enters strip `j`: the oldest slot is recycled at the leading edge.

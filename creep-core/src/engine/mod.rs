@@ -86,6 +86,9 @@ pub struct Contact {
     warnings: Vec<String>,
     /// Temperature tolerance of the local solve, K: 1e-4 / (largest temperature coefficient).
     t_tol: f64,
+    /// Pressure parts of the lattice nodes per strip, for the peak pressure in `np_cache_p0`.
+    np_cache: Vec<Vec<crate::material::NodeP>>,
+    np_cache_p0: Vec<f64>,
     /// How a step advances the bristles (see [`Scheme`]).
     scheme: Scheme,
     /// Values of the extra (data) columns the formula effects use, by name.
@@ -155,6 +158,8 @@ impl Contact {
             initialized: false,
             warnings: Vec::new(),
             scheme: Scheme::Continuous,
+            np_cache: vec![Vec::new(); ny],
+            np_cache_p0: vec![f64::NAN; ny],
             extra: Vec::new(),
             fvars: Vec::new(),
             fstatic: [1.0; 5],

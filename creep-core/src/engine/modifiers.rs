@@ -6,6 +6,12 @@ use crate::error::{CreepError, Result};
 use crate::material::NodeP;
 
 impl Contact {
+    /// True if formula or custom effects modify the material.
+    #[inline]
+    pub(super) fn has_modifiers(&self) -> bool {
+        !(self.cfg.formulas.is_empty() && self.cfg.custom.is_empty())
+    }
+
     /// Sets the values of extra (data) columns that formula effects use.
     pub fn set_extra(&mut self, values: &[(String, f64)]) -> Result<()> {
         self.extra = values.to_vec();
