@@ -175,8 +175,10 @@ pub fn peclet_ok(a: f64, v: f64, v_w: f64, kappa_w: f64, kappa_r: f64) -> bool {
 /// `t_hist`: the temperature the bristle reaches first while heating up (q(T) may rise with T
 /// where softening turns an elastic bristle plastic). `eval(T)` returns the bristle's new state
 /// and its heat density q at temperature T; `first` is that pair at `t_hist`, `q_prev` the
-/// bristle's heat density of its previous sub-step (the predictor), `tol` the tolerance in K.
-/// Returns the state and q at the root.
+/// bristle's heat density of its previous sub-step (the predictor), `tol` the tolerance in K,
+/// `lerp(a, b, w)` the state a + w (b - a) where that is a valid state (None where it is not,
+/// e.g. across a change of regime). Returns the state and q at the root.
+#[allow(clippy::too_many_arguments)]
 pub fn solve_self_heating<S: Copy>(
     t_hist: f64,
     self_c: f64,
@@ -185,8 +187,12 @@ pub fn solve_self_heating<S: Copy>(
     q_prev: f64,
     tol: f64,
     eval: impl Fn(f64) -> (S, f64),
+    lerp: impl Fn(&S, &S, f64) -> Option<S>,
 ) -> (S, f64) {
     let (mut ns, mut q) = (first, q);
+    // states and true residuals at the bracket's ends, for the final interpolation
+    let (mut sa, mut qa) = (first, q);
+    let (mut sb, mut qb) = (first, q);
     let old_q = q_prev;
     // Solve T = t_hist + self_c q(T) for the smallest root above t_hist (the temperature
     // the bristle reaches first while heating up; q(T) may rise with T where softening
@@ -219,12 +225,14 @@ pub fn solve_self_heating<S: Copy>(
             tb = secant_up(ta, ga, tp, gp);
             ta = tp;
             ga = gp;
+            (sa, qa) = (sp, qp);
         } else {
             // the root lies between t_hist and the predictor
             ns = sp;
             q = qp;
             tb = tp;
             gb = gp;
+            (sb, qb) = (sp, qp);
             bracketed = true;
         }
     }
@@ -232,10 +240,10 @@ pub fn solve_self_heating<S: Copy>(
         if bracketed || tb == ta {
             break;
         }
-        let (sb, qb) = eval(tb);
-        ns = sb;
-        q = qb;
-        gb = g_of(qb, tb);
+        let (s_new, q_new) = eval(tb);
+        ns = s_new;
+        q = q_new;
+        gb = g_of(q_new, tb);
         if gb.abs() < tol {
             break;
         }
@@ -243,16 +251,27 @@ pub fn solve_self_heating<S: Copy>(
             let next = secant_up(ta, ga, tb, gb);
             ta = tb;
             ga = gb;
+            (sa, qa) = (s_new, q_new);
             tb = next;
         } else {
+            (sb, qb) = (ns, q);
             bracketed = true;
             break;
         }
     }
     if bracketed {
         let mut side = 0;
+        let (mut ga_true, mut gb_true) = (ga, gb);
         for _ in 0..60 {
             let tc = tb - gb * (tb - ta) / (gb - ga);
+            if (tb - ta).abs() < LERP_TOLS * tol {
+                // a narrow bracket: g is linear on it to well within the tolerance, so the
+                // state at the secant root is the interpolation of the ends' states
+                let w = ga_true / (ga_true - gb_true);
+                if let Some(st) = lerp(&sa, &sb, w) {
+                    return (st, qa + w * (qb - qa));
+                }
+            }
             let (sc, qc) = eval(tc);
             let gc = g_of(qc, tc);
             ns = sc;
@@ -263,6 +282,7 @@ pub fn solve_self_heating<S: Copy>(
             if gc < 0.0 {
                 tb = tc;
                 gb = gc;
+                (sb, qb, gb_true) = (sc, qc, gc);
                 if side == -1 {
                     ga *= 0.5;
                 }
@@ -270,6 +290,7 @@ pub fn solve_self_heating<S: Copy>(
             } else {
                 ta = tc;
                 ga = gc;
+                (sa, qa, ga_true) = (sc, qc, gc);
                 if side == 1 {
                     gb *= 0.5;
                 }
@@ -279,6 +300,11 @@ pub fn solve_self_heating<S: Copy>(
     }
     (ns, q)
 }
+
+/// Width of a bracket, in tolerances, below which the root's state is interpolated between
+/// the bracket's ends instead of evaluated (the interpolation error is far below the tolerance
+/// there: the residual is linear over a few kelvin).
+const LERP_TOLS: f64 = 5000.0;
 
 /// The next trial temperature above `tb` while g > 0 at both `ta` < `tb`: the secant's zero
 /// where g falls, else the fixed-point step tb + g(tb).

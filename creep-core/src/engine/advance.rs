@@ -135,7 +135,26 @@ impl Contact {
         };
         let (mut ns, mut q) = eval(t_hist);
         if self.r.temperature && q > 0.0 && self_c > 0.0 {
-            (ns, q) = thermal::solve_self_heating(t_hist, self_c, q, ns, old.q, self.t_tol, eval);
+            (ns, q) = thermal::solve_self_heating(
+                t_hist,
+                self_c,
+                q,
+                ns,
+                old.q,
+                self.t_tol,
+                eval,
+                |a: &BristleState, b: &BristleState, w: f64| {
+                    // only within one regime (no kink between the ends)
+                    (a.regime == b.regime).then(|| BristleState {
+                        tau: [
+                            a.tau[0] + w * (b.tau[0] - a.tau[0]),
+                            a.tau[1] + w * (b.tau[1] - a.tau[1]),
+                        ],
+                        sh: a.sh + w * (b.sh - a.sh),
+                        ..*a
+                    })
+                },
+            );
         }
         ns.temp = if self.r.temperature {
             t_hist + self_c * q
