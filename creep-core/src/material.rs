@@ -88,7 +88,13 @@ impl Resolved {
         if !self.pressure || c.is_infinite() {
             1.0
         } else {
-            -(-p * c).exp_m1()
+            let x = p * c;
+            // 1 - exp(-x) loses no accuracy that matters above x = 1e-3 and exp is cheaper
+            if x > 1e-3 {
+                1.0 - (-x).exp()
+            } else {
+                -(-x).exp_m1()
+            }
         }
     }
 
@@ -181,7 +187,7 @@ impl Resolved {
 
     /// Material at temperature `t` (Eq. 4.3, 4.4) from the node's pressure parts, formula
     /// effects not applied.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn material_base(&self, np: &NodeP, t: f64) -> Material {
         let r = self;
         if r.coulomb {

@@ -301,6 +301,65 @@ pub fn solve_self_heating<S: Copy>(
     (ns, q)
 }
 
+/// The solve of [`solve_self_heating`] started at the predictor t_hist + self_c q_prev (the
+/// bristle's heat of its previous move) instead of at t_hist: a fixed-point step, then secant
+/// steps, and the interpolation of [`solve_self_heating`] once the root is bracketed within a
+/// few kelvin. Valid only where the root is unique, which `unique(state)` tells for each
+/// evaluated state (a bristle whose heat falls with T); returns None wherever that or the
+/// convergence is in doubt, and the caller then runs the full solve from t_hist.
+pub fn solve_from_predictor<S: Copy>(
+    t_hist: f64,
+    self_c: f64,
+    q_prev: f64,
+    tol: f64,
+    eval: impl Fn(f64) -> (S, f64),
+    lerp: impl Fn(&S, &S, f64) -> Option<S>,
+    unique: impl Fn(&S) -> bool,
+) -> Option<(S, f64)> {
+    let g_of = |q: f64, t: f64| t_hist + self_c * q - t;
+    let mut t0 = t_hist + self_c * q_prev;
+    let (mut s0, mut q0) = eval(t0);
+    if q0 <= 0.0 || !unique(&s0) {
+        return None;
+    }
+    let mut g0 = g_of(q0, t0);
+    if g0.abs() < tol {
+        return Some((s0, q0));
+    }
+    let mut t1 = t0 + g0;
+    for _ in 0..20 {
+        let (s1, q1) = eval(t1);
+        if q1 <= 0.0 || !unique(&s1) {
+            return None;
+        }
+        if (q1 - q0) * (t1 - t0) > 0.0 {
+            // the heat rises with T here: the root may not be unique
+            return None;
+        }
+        let g1 = g_of(q1, t1);
+        if g1.abs() < tol {
+            return Some((s1, q1));
+        }
+        if (g0 > 0.0) != (g1 > 0.0) && (t1 - t0).abs() < LERP_TOLS * tol {
+            let w = g0 / (g0 - g1);
+            if let Some(st) = lerp(&s0, &s1, w) {
+                return Some((st, q0 + w * (q1 - q0)));
+            }
+        }
+        let t2 = if g1 != g0 {
+            t1 - g1 * (t1 - t0) / (g1 - g0)
+        } else {
+            t1 + g1
+        };
+        if !(t2.is_finite() && t2 >= t_hist) {
+            return None;
+        }
+        (t0, s0, q0, g0) = (t1, s1, q1, g1);
+        t1 = t2;
+    }
+    None
+}
+
 /// Width of a bracket, in tolerances, below which the root's state is interpolated between
 /// the bracket's ends instead of evaluated (the interpolation error is far below the tolerance
 /// there: the residual is linear over a few kelvin).

@@ -108,7 +108,6 @@ fn marching_new_bristles_is_bit_identical_to_the_sub_step_loop() {
     for name in ["table4.1", "fastsim", "wet"] {
         let cfg = with_grid(preset(name), 30, 9);
         let mut fast = Contact::new(&cfg).unwrap();
-        fast.set_scheme(creep_core::engine::Scheme::CellsMarch);
         let mut plain = Contact::new(&cfg).unwrap();
         plain.set_march_new_bristles(false);
         let i0 = Inputs {

@@ -77,9 +77,10 @@ impl Contact {
             0.0
         };
         let old = *s;
-        let u_abs = old.u[0].hypot(old.u[1]);
+        // displacements and stresses are far from overflow: sqrt instead of hypot
+        let u_abs = (old.u[0] * old.u[0] + old.u[1] * old.u[1]).sqrt();
         let slip = if k.h > 0.0 {
-            du[0].hypot(du[1]) / k.h
+            (du[0] * du[0] + du[1] * du[1]).sqrt() / k.h
         } else {
             0.0
         };
@@ -93,7 +94,9 @@ impl Contact {
         let release_ref: std::cell::Cell<Option<[f64; 2]>> = std::cell::Cell::new(None);
         let theta = if k.heat && self.r.temperature {
             let cmax = self.r.tc1_t.max(self.r.tc2_t).max(self.r.lp_t);
-            let t0 = old.tau[0].hypot(old.tau[1]).max(1.0);
+            let t0 = (old.tau[0] * old.tau[0] + old.tau[1] * old.tau[1])
+                .sqrt()
+                .max(1.0);
             let gain = self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * cmax / k.h;
             if gain > 0.8 {
                 0.8 / gain
@@ -133,28 +136,38 @@ impl Contact {
             };
             (ns, q)
         };
-        let (mut ns, mut q) = eval(t_hist);
-        if self.r.temperature && q > 0.0 && self_c > 0.0 {
-            (ns, q) = thermal::solve_self_heating(
-                t_hist,
-                self_c,
-                q,
-                ns,
-                old.q,
-                self.t_tol,
-                eval,
-                |a: &BristleState, b: &BristleState, w: f64| {
-                    // only within one regime (no kink between the ends)
-                    (a.regime == b.regime).then(|| BristleState {
-                        tau: [
-                            a.tau[0] + w * (b.tau[0] - a.tau[0]),
-                            a.tau[1] + w * (b.tau[1] - a.tau[1]),
-                        ],
-                        sh: a.sh + w * (b.sh - a.sh),
-                        ..*a
-                    })
-                },
-            );
+        let lerp = |a: &BristleState, b: &BristleState, w: f64| {
+            // only within one regime (no kink between the ends)
+            (a.regime == b.regime).then(|| BristleState {
+                tau: [
+                    a.tau[0] + w * (b.tau[0] - a.tau[0]),
+                    a.tau[1] + w * (b.tau[1] - a.tau[1]),
+                ],
+                sh: a.sh + w * (b.sh - a.sh),
+                ..*a
+            })
+        };
+        // A sliding bristle that heated in its previous move starts the solve at the
+        // predictor; this is valid where the root is unique (a bristle sliding at tau_c2(T),
+        // whose heat falls with T) and the release is not damped; otherwise (or when a trial
+        // state is not sliding) the full solve from t_hist. Plastic bristles are left to the
+        // full solve: an elastic state at t_hist can be the smallest root there.
+        let sliding = |s: &BristleState| s.regime == bristle::Regime::Sliding;
+        let predicted =
+            if self.r.temperature && self_c > 0.0 && old.q > 0.0 && theta == 1.0 && sliding(&old) {
+                thermal::solve_from_predictor(
+                    t_hist, self_c, old.q, self.t_tol, eval, lerp, sliding,
+                )
+            } else {
+                None
+            };
+        let (mut ns, mut q) = match predicted {
+            Some(r) => r,
+            None => eval(t_hist),
+        };
+        if predicted.is_none() && self.r.temperature && q > 0.0 && self_c > 0.0 {
+            (ns, q) =
+                thermal::solve_self_heating(t_hist, self_c, q, ns, old.q, self.t_tol, eval, lerp);
         }
         ns.temp = if self.r.temperature {
             t_hist + self_c * q
@@ -463,7 +476,24 @@ impl Contact {
 }
 
 impl Contact {
-    /// [`super::Scheme::Continuous`]: advances every strip by `dt` (v > 0). The bristles that
+    /// A step of `dt` that rolls past the whole contact (v dt >= 2a): every bristle enters
+    /// during it, so each strip is the steady march of the step's inputs, ending at the
+    /// strip's new phase (the entries are counted in closed form: bounded work however long
+    /// the step or small the contact).
+    pub(super) fn march_all(&mut self, dt: f64) {
+        let dist = self.inputs.v * dt;
+        for j in 0..self.ny {
+            let dx = 2.0 * self.ell[j] * self.patch.a / self.nx as f64;
+            let cells = self.phase[j] + dist / dx;
+            let ph = (cells - (cells + 1e-9).floor()).max(0.0);
+            let ph = if ph < 1e-9 { 0.0 } else { ph };
+            self.head[j] = 0;
+            self.phase[j] = ph;
+            self.march_new(j, self.nx + 1, ph * dx);
+        }
+    }
+
+    /// [`super::Scheme::Continuous`]: advances every strip by `dt` (0 < v dt < 2a). The bristles that
     /// stay in the contact move by v dt in `n_sub` equal sub-steps of at most
     /// [`super::MAX_SUBSTEP_CELLS`] cells (material at each sub-step's end, Eq. 4.5); those
     /// that enter during the step are marched cell by cell from the leading edge (their
@@ -476,15 +506,6 @@ impl Contact {
         let a = self.patch.a;
         let nx = self.nx;
         let dist = v * dt;
-        if dist >= 2.0 * a {
-            // every bristle enters during the step: the steady state of the step's inputs
-            for j in 0..self.ny {
-                self.head[j] = 0;
-                self.phase[j] = 0.0;
-                self.march_new(j, nx + 1, 0.0);
-            }
-            return;
-        }
         let d_max = super::MAX_SUBSTEP_CELLS * 2.0 * a / nx as f64;
         let n_sub_eff = ((dist / d_max) * (1.0 - 1e-12)).ceil().max(1.0);
         let (h, d) = (dt / n_sub_eff, dist / n_sub_eff);
