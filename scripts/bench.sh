@@ -1,6 +1,15 @@
 #!/usr/bin/env bash
-# Prints the measured cost ratio (steady ECF with temperature) / FASTSIM on the same grid, one run, medians.
-# Criterion benches: cargo bench -p creep-core
+# Benchmarks (not tests): the project's FASTSIM and steady ECF (dry, table4.1, temperature on)
+# against a plain C FASTSIM (gcc -O2, same grid) interleaved in one process (medians of
+# per-round ratios), transient wall time / simulated time (dry, 80x21, c_x = 15 %), and
+# `ecf diagnose` on the worked example. Pinned to one core where taskset exists.
+#   bash scripts/bench.sh            full run (about 2-3 minutes)
+#   bash scripts/bench.sh --quick    short run (CI smoke test, < 30 s)
+#   bash scripts/bench.sh --only steady|transient|diagnose
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo run --quiet --release -p creep-core --example ratio
+cargo build --release -q -p ecf-cli -p ecf-bench
+if command -v taskset >/dev/null 2>&1; then
+  exec taskset -c 0 target/release/ecf-bench "$@"
+fi
+exec target/release/ecf-bench "$@"

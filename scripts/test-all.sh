@@ -13,5 +13,7 @@ echo "== build the FMU (dist/ecf_contact.fmu)" >&2
 bash scripts/build-fmu.sh >/dev/null
 echo "== cargo test (release)" >&2
 cargo test -q --release --workspace
+echo "== benchmark smoke run (scripts/bench.sh --quick; figures only, no assertions)" >&2
+bash scripts/bench.sh --quick
 echo "== pytest tests-py" >&2
 .venv/bin/python -m pytest -q tests-py

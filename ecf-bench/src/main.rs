@@ -1,0 +1,220 @@
+//! `ecf-bench`: cost of the ECF engine against a plain C FASTSIM, transient real-time factors and `ecf diagnose`, measured interleaved in one process (medians).
+//!
+//! Usage: ecf-bench [--quick] [--only steady|transient|diagnose]
+use creep_core::{Config, Grid, Inputs, Model};
+use ecf_bench::Contact;
+use std::hint::black_box;
+use std::time::Instant;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// Seconds per call of `f`, timed over `reps` calls.
+fn time(reps: usize, mut f: impl FnMut()) -> f64 {
+    let t = Instant::now();
+    for _ in 0..reps {
+        f();
+    }
+    t.elapsed().as_secs_f64() / reps as f64
+}
+
+/// Repetitions so that one timing lasts about `target` seconds.
+fn reps_for(target: f64, mut f: impl FnMut()) -> usize {
+    let once = time(1, &mut f).max(1e-8);
+    ((target / once).ceil() as usize).clamp(1, 100_000)
+}
+
+fn model(preset: &str, nx: usize, ny: usize) -> Model {
+    let mut c = Config::preset(preset).expect("preset");
+    c.grid = Grid { nx, ny };
+    Model::new(&c).expect("model")
+}
+
+fn steady_table(quick: bool) {
+    let rounds = if quick { 5 } else { 31 };
+    let (v, fn_n) = (20.0, 110e3);
+    println!("== steady calls, v = {v} m/s, F_N = {} kN; median over {rounds} interleaved rounds of the per-round ratio to the C FASTSIM (gcc -O2, same grid)", fn_n / 1e3);
+    println!(
+        "{:>6} {:>6} {:>10} {:>14} {:>14} {:>14} {:>14}",
+        "grid", "c_x_%", "C_ns/cell", "FASTSIM/C", "dry/C", "table4.1/C", "|dFx|/Fx C-vs-project"
+    );
+    for (nx, ny) in [(40usize, 21usize), (80, 21)] {
+        let cells = ((nx + 1) * ny) as f64;
+        let cfg_fs = Config::preset("fastsim").expect("preset");
+        let c = Contact::new(&cfg_fs, fn_n).expect("contact");
+        let mut fs = model("fastsim", nx, ny);
+        let mut dry = model("dry", nx, ny);
+        let mut t41 = model("table4.1", nx, ny);
+        let mut med = [Vec::new(), Vec::new(), Vec::new()];
+        for cx in [0.002, 0.02, 0.10, 0.30] {
+            let i = Inputs {
+                cx,
+                v,
+                fn_n,
+                ..Inputs::default()
+            };
+            let proj = fs.steady(&i).expect("steady").fx;
+            let (cfx, _) = c.c_fastsim(nx, ny, cx, 0.0, 0.0);
+            let agree = (proj - cfx).abs() / cfx.abs();
+            let target = if quick { 2e-4 } else { 2e-3 };
+            let kc = reps_for(target, || {
+                black_box(c.c_fastsim(nx, ny, black_box(cx), 0.0, 0.0));
+            });
+            let kf = reps_for(target, || {
+                black_box(fs.steady(&i).expect("steady"));
+            });
+            let kd = reps_for(target, || {
+                black_box(dry.steady(&i).expect("steady"));
+            });
+            let kt = reps_for(target, || {
+                black_box(t41.steady(&i).expect("steady"));
+            });
+            let (mut tc, mut rf, mut rd, mut rt) = (vec![], vec![], vec![], vec![]);
+            for _ in 0..rounds {
+                let c0 = time(kc, || {
+                    black_box(c.c_fastsim(nx, ny, black_box(cx), 0.0, 0.0));
+                });
+                let f = time(kf, || {
+                    black_box(fs.steady(&i).expect("steady"));
+                });
+                let d = time(kd, || {
+                    black_box(dry.steady(&i).expect("steady"));
+                });
+                let t = time(kt, || {
+                    black_box(t41.steady(&i).expect("steady"));
+                });
+                tc.push(c0);
+                rf.push(f / c0);
+                rd.push(d / c0);
+                rt.push(t / c0);
+            }
+            let (mf, md, mt) = (median(rf), median(rd), median(rt));
+            med[0].push(mf);
+            med[1].push(md);
+            med[2].push(mt);
+            println!(
+                "{:>6} {:>6} {:>10.1} {:>14.2} {:>14.2} {:>14.2} {:>14.1e}",
+                format!("{nx}x{ny}"),
+                cx * 100.0,
+                median(tc) / cells * 1e9,
+                mf,
+                md,
+                mt,
+                agree
+            );
+        }
+        println!(
+            "{:>6} {:>6} {:>10} {:>14.2} {:>14.2} {:>14.2}",
+            format!("{nx}x{ny}"),
+            "median",
+            "",
+            median(med[0].clone()),
+            median(med[1].clone()),
+            median(med[2].clone())
+        );
+    }
+}
+
+fn transient_table(quick: bool) {
+    let sim = if quick { 0.01 } else { 0.1 };
+    println!("== transient ECF, one contact, preset dry, grid 80x21, c_x = 15 % (+-1 % wobble), F_N = 110 kN, {sim} s simulated");
+    println!(
+        "{:>8} {:>8} {:>14} {:>16}",
+        "v_m/s", "dt_ms", "us/step(med)", "wall/simulated"
+    );
+    for (v, dt) in [(5.0, 1e-3), (20.0, 1e-4), (30.0, 2.5e-4)] {
+        let mut m = model("dry", 80, 21);
+        let i = Inputs {
+            cx: 0.15,
+            v,
+            fn_n: 110e3,
+            ..Inputs::default()
+        };
+        m.steady(&i).expect("steady");
+        let n = ((sim / dt) as usize).max(5);
+        let mut t = Vec::with_capacity(n);
+        for k in 0..n {
+            let j = Inputs {
+                cx: 0.15 + 0.01 * (k as f64 * 0.3).sin(),
+                ..i
+            };
+            let s = Instant::now();
+            black_box(m.step(dt, &j).expect("step"));
+            t.push(s.elapsed().as_secs_f64());
+        }
+        let med = median(t);
+        println!(
+            "{v:>8} {:>8} {:>14.1} {:>16.2}",
+            dt * 1e3,
+            med * 1e6,
+            med / dt
+        );
+    }
+}
+
+fn diagnose(quick: bool) {
+    let exe = std::path::Path::new("target/release/ecf");
+    if !exe.exists() {
+        println!(
+            "== ecf diagnose: skipped ({} missing; scripts/bench.sh builds it)",
+            exe.display()
+        );
+        return;
+    }
+    let runs = if quick { 1 } else { 3 };
+    let mut t = Vec::new();
+    for _ in 0..runs {
+        let s = Instant::now();
+        let out = std::process::Command::new(exe)
+            .args([
+                "diagnose",
+                "examples/measurements/humid.csv",
+                "--config",
+                "examples/measurements/dry.json",
+            ])
+            .output()
+            .expect("run ecf diagnose");
+        if !out.status.success() {
+            println!(
+                "== ecf diagnose failed: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            return;
+        }
+        t.push(s.elapsed().as_secs_f64());
+    }
+    println!("== ecf diagnose on the worked example (examples/measurements/humid.csv): {:.2} s (median of {runs})", median(t));
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let quick = args.iter().any(|a| a == "--quick");
+    let only = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|p| args.get(p + 1))
+        .cloned();
+    if let Some(o) = &only {
+        if !["steady", "transient", "diagnose"].contains(&o.as_str()) {
+            eprintln!("ecf-bench: --only takes steady, transient or diagnose (got '{o}')");
+            std::process::exit(2);
+        }
+    }
+    let run = |w: &str| only.as_deref().is_none_or(|o| o == w);
+    if run("steady") {
+        steady_table(quick);
+    }
+    if run("transient") {
+        transient_table(quick);
+    }
+    if run("diagnose") {
+        diagnose(quick);
+    }
+}
