@@ -44,7 +44,7 @@ QUICK = {
     "sine_steps_per_cycle": 200,
     "sine_cycles": 3,
     "health_dt_ms": [0.01, 0.002],
-    "drivetrain": {"preset": "dry", "t_end_step": 2.0, "t_end_ramp": 8.0, "h_ms": 0.5, "grid": [8, 5]},
+    "drivetrain": {"preset": "dry", "t_end_step": 2.0, "t_end_ramp": 8.0, "h_ms": 0.5, "grid": [16, 9]},
     "material_n": 201,
 }
 

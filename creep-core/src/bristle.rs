@@ -178,24 +178,27 @@ fn same_characteristic(
             s.regime = Regime::Elastic;
         }
     } else {
-        let n0 = norm(u0);
-        if s.regime == Regime::Plastic && n1 > n0 && !perfectly_plastic {
-            // tc1 rose above the stress of a hardening bristle during the move (the pressure
-            // grows towards the middle of the contact): in the limit of short moves the bristle
-            // rides on tc1 (each short elastic excursion ends at tc1 again) unless Voce
-            // hardening over the move lifts it higher. Without this, the elastic branch below
-            // restarts the Voce curve at tc1 in every move, which makes the result depend on
-            // the move length (+1 % per cell, docs/model.md section 5).
-            let t = (m.tc2 - (m.tc2 - t0) * (-(n1 - n0) / m.lp).exp()).max(m.tc1);
-            s.tau = [t * dir[0], t * dir[1]];
-            s.regime = Regime::Plastic;
-            return;
-        }
         let tr = [s.tau[0] + dtau[0], s.tau[1] + dtau[1]];
         let ntr = norm(tr);
         if ntr <= m.tc1 {
             s.tau = tr;
             s.regime = Regime::Elastic;
+            return;
+        }
+        let n0 = norm(u0);
+        if s.regime == Regime::Plastic && n1 > n0 && !perfectly_plastic {
+            // tc1 rose above the stress of a hardening bristle during the move (the pressure
+            // grows towards the middle of the contact) and the elastic increment takes it back
+            // past tc1: in the limit of short moves the bristle rides on tc1 (each short
+            // elastic excursion ends at tc1 again) unless Voce hardening over the move lifts it
+            // higher, never above the elastic trial. Without this, the elastic branch below
+            // restarts the Voce curve at tc1 in every move, which makes the result depend on
+            // the move length (+1 % per cell, docs/model.md section 4).
+            let t = (m.tc2 - (m.tc2 - t0) * (-(n1 - n0) / m.lp).exp())
+                .max(m.tc1)
+                .min(ntr);
+            s.tau = [t * dir[0], t * dir[1]];
+            s.regime = Regime::Plastic;
             return;
         }
         // fraction lambda of the increment that reaches |tau| = tc1
