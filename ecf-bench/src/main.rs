@@ -1,6 +1,7 @@
 //! `ecf-bench`: cost of the ECF engine against a plain C FASTSIM, transient real-time factors and `ecf diagnose`, measured interleaved in one process (medians).
 //!
 //! Usage: ecf-bench [--quick] [--only steady|transient|diagnose]
+use creep_core::engine::Scheme;
 use creep_core::{Config, Grid, Inputs, Model};
 use ecf_bench::Contact;
 use std::hint::black_box;
@@ -124,38 +125,44 @@ fn steady_table(quick: bool) {
 
 fn transient_table(quick: bool) {
     let sim = if quick { 0.01 } else { 0.1 };
-    println!("== transient ECF, one contact, preset dry, grid 80x21, c_x = 15 % (+-1 % wobble), F_N = 110 kN, {sim} s simulated");
+    println!("== transient ECF, one contact, preset dry, grid 80x21, c_x = 15 % (+-1 % wobble), F_N = 110 kN, {sim} s simulated; default scheme CellsMarch, opt-in Continuous (docs/model.md section 3)");
     println!(
-        "{:>8} {:>8} {:>14} {:>16}",
-        "v_m/s", "dt_ms", "us/step(med)", "wall/simulated"
+        "{:>8} {:>8} {:>12} {:>14} {:>16}",
+        "v_m/s", "dt_ms", "scheme", "us/step(med)", "wall/simulated"
     );
-    for (v, dt) in [(5.0, 1e-3), (20.0, 1e-4), (30.0, 2.5e-4)] {
-        let mut m = model("dry", 80, 21);
-        let i = Inputs {
-            cx: 0.15,
-            v,
-            fn_n: 110e3,
-            ..Inputs::default()
-        };
-        m.steady(&i).expect("steady");
-        let n = ((sim / dt) as usize).max(5);
-        let mut t = Vec::with_capacity(n);
-        for k in 0..n {
-            let j = Inputs {
-                cx: 0.15 + 0.01 * (k as f64 * 0.3).sin(),
-                ..i
+    for scheme in [Scheme::CellsMarch, Scheme::Continuous] {
+        for (v, dt) in [(5.0, 1e-3), (20.0, 1e-4), (30.0, 2.5e-4)] {
+            let mut m = model("dry", 80, 21);
+            if let Model::Bristle(c) = &mut m {
+                c.set_scheme(scheme);
+            }
+            let i = Inputs {
+                cx: 0.15,
+                v,
+                fn_n: 110e3,
+                ..Inputs::default()
             };
-            let s = Instant::now();
-            black_box(m.step(dt, &j).expect("step"));
-            t.push(s.elapsed().as_secs_f64());
+            m.steady(&i).expect("steady");
+            let n = ((sim / dt) as usize).max(5);
+            let mut t = Vec::with_capacity(n);
+            for k in 0..n {
+                let j = Inputs {
+                    cx: 0.15 + 0.01 * (k as f64 * 0.3).sin(),
+                    ..i
+                };
+                let s = Instant::now();
+                black_box(m.step(dt, &j).expect("step"));
+                t.push(s.elapsed().as_secs_f64());
+            }
+            let med = median(t);
+            println!(
+                "{v:>8} {:>8} {:>12} {:>14.1} {:>16.2}",
+                dt * 1e3,
+                format!("{scheme:?}"),
+                med * 1e6,
+                med / dt
+            );
         }
-        let med = median(t);
-        println!(
-            "{v:>8} {:>8} {:>14.1} {:>16.2}",
-            dt * 1e3,
-            med * 1e6,
-            med / dt
-        );
     }
 }
 
