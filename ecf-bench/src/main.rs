@@ -120,6 +120,48 @@ fn steady_table(quick: bool) {
             median(med[1].clone()),
             median(med[2].clone())
         );
+        // FASTSIM with lateral creepage and spin: the general lockstep loop (square roots),
+        // where pure longitudinal creepage takes the loop without them
+        let i = Inputs {
+            cx: 0.02,
+            cy: 0.01,
+            spin: 1.0,
+            v,
+            fn_n,
+            ..Inputs::default()
+        };
+        let proj = fs.steady(&i).expect("steady");
+        let (cfx, cfy) = c.c_fastsim(nx, ny, i.cx, i.cy, i.spin);
+        let agree = ((proj.fx - cfx).abs() + (proj.fy - cfy).abs()) / (cfx.hypot(cfy));
+        let target = if quick { 2e-4 } else { 2e-3 };
+        let kc = reps_for(target, || {
+            black_box(c.c_fastsim(nx, ny, black_box(i.cx), i.cy, i.spin));
+        });
+        let kf = reps_for(target, || {
+            black_box(fs.steady(&i).expect("steady"));
+        });
+        let mut r = vec![];
+        let mut tc = vec![];
+        for _ in 0..rounds {
+            let c0 = time(kc, || {
+                black_box(c.c_fastsim(nx, ny, black_box(i.cx), i.cy, i.spin));
+            });
+            let f = time(kf, || {
+                black_box(fs.steady(&i).expect("steady"));
+            });
+            tc.push(c0);
+            r.push(f / c0);
+        }
+        println!(
+            "{:>6} {:>6} {:>10.1} {:>14.2} {:>14} {:>14} {:>14.1e}   (c_y = 1 %, spin = 1 1/m)",
+            format!("{nx}x{ny}"),
+            "2",
+            median(tc) / cells * 1e9,
+            median(r),
+            "",
+            "",
+            agree
+        );
     }
 }
 

@@ -387,7 +387,7 @@ impl Contact {
     /// True if the dedicated FASTSIM march applies: Coulomb bound, no layer elasticity, no
     /// temperature, no modifiers (the `fastsim` preset).
     #[inline]
-    fn coulomb_path(&self) -> bool {
+    pub(super) fn coulomb_path(&self) -> bool {
         self.r.coulomb
             && !self.r.layer_el
             && !self.r.temperature
@@ -560,5 +560,240 @@ impl Contact {
         }
         self.st = st;
         self.acc = accs;
+    }
+}
+
+/// Strips marched side by side in [`Contact::steady_coulomb`] (independent dependency
+/// chains the processor overlaps).
+pub(super) const LANES: usize = 4;
+
+impl Contact {
+    /// The Coulomb bounds mu p of the lattice nodes k = 0..=nx, [`LANES`] strips side by side
+    /// (group g, node k at `g * (nx + 1) + k`), cached per peak pressure.
+    fn bound_lanes(&mut self) -> Vec<[f64; LANES]> {
+        let nx = self.nx;
+        let groups = self.ny.div_ceil(LANES);
+        let mut b = std::mem::take(&mut self.bound_cache);
+        if self.bound_cache_p0 != self.patch.p0 || b.len() != groups * (nx + 1) {
+            b.clear();
+            b.resize(groups * (nx + 1), [0.0; LANES]);
+            for j in 0..self.ny {
+                let nodes = self.lattice_nodes(j);
+                let (g, l) = (j / LANES, j % LANES);
+                for (k, n) in nodes.iter().enumerate().skip(1) {
+                    b[g * (nx + 1) + k][l] = n.bound;
+                }
+                self.np_cache[j] = nodes;
+            }
+            self.bound_cache_p0 = self.patch.p0;
+        }
+        b
+    }
+
+    /// The steady state of FASTSIM (see [`Self::coulomb_path`]): the march of
+    /// [`Self::march_coulomb`] for every strip at phase 0, [`LANES`] strips side by side, with
+    /// the integrals of [`Self::integrate`] (trapezoid over the nodes) summed in the same
+    /// pass. Every strip has nx cells, so the strips of a group advance in lockstep and
+    /// the latency of each strip's sqrt/division chain is hidden behind the others'.
+    /// The states stored are those of the general march (to rounding).
+    pub(super) fn steady_coulomb(&mut self) -> super::Outputs {
+        if self.inputs.cy == 0.0 && self.inputs.spin == 0.0 {
+            self.steady_coulomb_lanes::<false>()
+        } else {
+            self.steady_coulomb_lanes::<true>()
+        }
+    }
+
+    /// [`Self::steady_coulomb`]; `LAT = false` for pure longitudinal creepage, where the
+    /// lateral stress stays 0 and the norms are absolute values (no square roots; the
+    /// same numbers, since sqrt(x^2) = |x| exactly).
+    #[inline(never)]
+    fn steady_coulomb_lanes<const LAT: bool>(&mut self) -> super::Outputs {
+        let nx = self.nx;
+        let (a, b) = (self.patch.a, self.patch.b);
+        let line = self.patch.line;
+        let v = self.inputs.v;
+        let t_bulk = self.inputs.t_bulk;
+        for j in 0..self.ny {
+            self.head[j] = 0;
+            self.phase[j] = 0.0;
+        }
+        let bounds = self.bound_lanes();
+        let (mut fx, mut fy, mut mz, mut pf, mut area, mut el) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        let init = BristleState {
+            temp: t_bulk,
+            ..BristleState::default()
+        };
+        let kin0 = self.kin(0.0, 0.0);
+        let (ilx, ily, ils) = (1.0 / kin0.lx, 1.0 / kin0.ly, 1.0 / kin0.ls);
+        let (lx, ly) = (kin0.lx, kin0.ly);
+        let (cx, cy, cs) = (kin0.cx, kin0.cy, kin0.cs);
+        let heat = v > V_STANDSTILL;
+        let mut scratch = vec![init; (LANES - 1) * (nx + 1)];
+        let mut st = std::mem::take(&mut self.st);
+        for (g, (strips, bnd)) in st
+            .chunks_mut(LANES * (nx + 1))
+            .zip(bounds.chunks_exact(nx + 1))
+            .enumerate()
+        {
+            let g0 = g * LANES;
+            let lanes = (self.ny - g0).min(LANES);
+            // per-lane constants (padding lanes repeat the last strip into scratch)
+            let jl = |l: usize| g0 + l.min(lanes - 1);
+            let d: [f64; LANES] = std::array::from_fn(|l| 2.0 * self.ell[jl(l)] * a / nx as f64);
+            let dxi: [f64; LANES] = std::array::from_fn(|l| 2.0 * self.ell[jl(l)] / nx as f64);
+            let ell: [f64; LANES] = std::array::from_fn(|l| self.ell[jl(l)]);
+            let y: [f64; LANES] =
+                std::array::from_fn(|l| if line { 0.0 } else { self.eta[jl(l)] * b });
+            let dy: [f64; LANES] =
+                std::array::from_fn(|l| if line { 2.0 * b } else { self.deta[jl(l)] * b });
+            let inv_h: [f64; LANES] =
+                std::array::from_fn(|l| if heat { self.r.kq / (d[l] / v) } else { 0.0 });
+            // half the move in normalized length: the spin lever arm at the move's midpoint
+            let hd: [f64; LANES] = std::array::from_fn(|l| 0.5 * d[l] / a);
+            let du0: [f64; LANES] = std::array::from_fn(|l| d[l] * (cx - cs * y[l]));
+            let dt0: [f64; LANES] = std::array::from_fn(|l| d[l] * (cx * ilx - cs * y[l] * ils));
+            let (mut t0, mut t1, mut u0, mut u1, mut sh) = (
+                [0.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+            );
+            let (mut sx, mut sy, mut sxy, mut sq, mut sel) = (
+                [0.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+                [0.0; LANES],
+            );
+            let (real, pad) = strips.split_at_mut(lanes * (nx + 1));
+            let mut out: Vec<&mut [BristleState]> = real
+                .chunks_exact_mut(nx + 1)
+                .chain(scratch.chunks_exact_mut(nx + 1))
+                .take(LANES)
+                .collect();
+            debug_assert!(pad.is_empty() || g0 + lanes == self.ny);
+            for o in out.iter_mut() {
+                o[0] = init;
+            }
+            // node 0: zero stress, elastic, half weight
+            for (l, e) in sel.iter_mut().enumerate() {
+                *e = 0.5 * dxi[l];
+            }
+            for k in 1..=nx {
+                let w = if k < nx { 1.0 } else { 0.5 };
+                let gk = bnd[k];
+                // branch-free over the lanes (the compiler keeps them in SIMD registers):
+                // elastic trial, radial return onto mu p where it is exceeded, zero where
+                // the node carries no pressure (two square roots and one division per lane,
+                // where the C march has one of each, but two lanes per instruction)
+                let mut xk = [0.0; LANES];
+                let mut du1 = [0.0; LANES];
+                let mut o = [[0.0; LANES]; 2];
+                let mut slide = [false; LANES];
+                let mut q = [0.0; LANES];
+                for l in 0..LANES {
+                    let xi_end = ell[l] - k as f64 * dxi[l];
+                    xk[l] = a * xi_end;
+                    let x = a * (xi_end + hd[l]);
+                    du1[l] = d[l] * (cy + cs * x);
+                    let dt1 = d[l] * (cy * ily + cs * x * ils);
+                    o[0][l] = t0[l];
+                    o[1][l] = t1[l];
+                    u0[l] += du0[l];
+                    u1[l] += du1[l];
+                    let tr = [t0[l] + dt0[l], if LAT { t1[l] + dt1 } else { 0.0 }];
+                    let n2 = if LAT {
+                        tr[0] * tr[0] + tr[1] * tr[1]
+                    } else {
+                        tr[0] * tr[0]
+                    };
+                    let g = gk[l];
+                    let live = g > 0.0; // false for NaN
+                    slide[l] = n2 > g * g;
+                    // |trial| and the stiffness along it k = m / |trial|,
+                    // m = |(tr_x / L_x, tr_y / L_y)|, with one division:
+                    // 1/|trial| = m inv, 1/m = |trial| inv
+                    let (ntr, m) = if LAT {
+                        (
+                            n2.sqrt(),
+                            ((tr[0] * ilx).powi(2) + (tr[1] * ily).powi(2)).sqrt(),
+                        )
+                    } else {
+                        (tr[0].abs(), (tr[0] * ilx).abs())
+                    };
+                    let inv = 1.0 / (ntr * m);
+                    let scale = if !live {
+                        0.0
+                    } else if slide[l] {
+                        g * m * inv
+                    } else {
+                        1.0
+                    };
+                    // plastic slip (|trial| - mu p) / k
+                    sh[l] += if live && slide[l] {
+                        (n2 - g * ntr) * ntr * inv
+                    } else {
+                        0.0
+                    };
+                    slide[l] |= !live;
+                    t0[l] = tr[0] * scale;
+                    t1[l] = tr[1] * scale;
+                    let dux = du0[l] - lx * (t0[l] - o[0][l]);
+                    let duy = du1[l] - ly * (t1[l] - o[1][l]);
+                    q[l] = ((t0[l] * dux + t1[l] * duy) * inv_h[l]).max(0.0);
+                    // trapezoid: node k at x_k = a xi_k (phase 0)
+                    let wk = w * dxi[l];
+                    sx[l] += wk * t0[l];
+                    sy[l] += wk * t1[l];
+                    sxy[l] += wk * xk[l] * t1[l];
+                    sq[l] += wk * q[l];
+                    sel[l] += if slide[l] { 0.0 } else { wk };
+                }
+                for l in 0..LANES {
+                    out[l][k] = BristleState {
+                        u: [u0[l], u1[l]],
+                        tau: [t0[l], t1[l]],
+                        sh: sh[l],
+                        temp: t_bulk,
+                        q: q[l],
+                        regime: if slide[l] {
+                            bristle::Regime::Sliding
+                        } else {
+                            bristle::Regime::Elastic
+                        },
+                    };
+                }
+            }
+            for l in 0..lanes {
+                let da = a * dy[l];
+                fx += sx[l] * da;
+                fy += sy[l] * da;
+                mz += (sxy[l] - y[l] * sx[l]) * da;
+                pf += sq[l] * da;
+                el += sel[l] * da;
+                area += 2.0 * ell[l] * da;
+            }
+        }
+        self.st = st;
+        self.bound_cache = bounds;
+        let fn_n = self.inputs.fn_n;
+        let area = area.max(f64::MIN_POSITIVE);
+        super::Outputs {
+            fx,
+            fy,
+            mz,
+            f: if fn_n > 0.0 { fx / fn_n } else { 0.0 },
+            t_max: t_bulk,
+            t_mean: t_bulk,
+            p_fric: pf,
+            frac_elastic: el / area,
+            frac_plastic: 0.0,
+            frac_sliding: (area - el).max(0.0) / area,
+            a,
+            b,
+            p0: self.patch.p0,
+        }
     }
 }

@@ -83,6 +83,8 @@ pub struct Contact {
     time: f64,
     inputs: Inputs,
     patch: Patch,
+    /// Normal force (N) that `patch` and `flex` belong to (NaN: none yet).
+    patch_fn: f64,
     flex: (f64, f64, f64),
     out: Outputs,
     initialized: bool,
@@ -92,6 +94,10 @@ pub struct Contact {
     /// Pressure parts of the lattice nodes per strip, for the peak pressure in `np_cache_p0`.
     np_cache: Vec<Vec<crate::material::NodeP>>,
     np_cache_p0: Vec<f64>,
+    /// Coulomb bounds of the lattice nodes, strips side by side (FASTSIM's steady march),
+    /// for the peak pressure in `bound_cache_p0`.
+    bound_cache: Vec<[f64; advance::LANES]>,
+    bound_cache_p0: f64,
     /// How a step advances the bristles (see [`Scheme`]).
     scheme: Scheme,
     /// Values of the extra (data) columns the formula effects use, by name.
@@ -156,6 +162,7 @@ impl Contact {
             time: 0.0,
             inputs: Inputs::default(),
             patch,
+            patch_fn: f64::NAN,
             flex: (0.0, 0.0, 0.0),
             out: Outputs::default(),
             initialized: false,
@@ -163,6 +170,8 @@ impl Contact {
             scheme: Scheme::CellsMarch,
             np_cache: vec![Vec::new(); ny],
             np_cache_p0: vec![f64::NAN; ny],
+            bound_cache: Vec::new(),
+            bound_cache_p0: f64::NAN,
             extra: Vec::new(),
             fvars: Vec::new(),
             fstatic: [1.0; 5],
@@ -212,7 +221,8 @@ impl Contact {
 
     fn set_inputs(&mut self, inputs: &Inputs) -> Result<()> {
         inputs.validate()?;
-        if inputs.fn_n > F_LIFT_OFF {
+        // the patch and flexibilities depend on F_N only (the configuration is fixed)
+        if inputs.fn_n > F_LIFT_OFF && inputs.fn_n != self.patch_fn {
             self.patch = self.patch_for(inputs.fn_n)?;
             let (a, b) = (self.patch.a, self.patch.b);
             let (ka, kb) = if self.patch.line {
@@ -222,6 +232,7 @@ impl Contact {
             };
             let c = kalker::coefficients(ka, kb, self.r.nu)?;
             self.flex = kalker::flexibilities(ka, kb, self.r.g, &c);
+            self.patch_fn = inputs.fn_n;
         }
         self.inputs = *inputs;
         self.update_formula_vars()?;
@@ -375,13 +386,23 @@ impl Contact {
         // the steady state is the grid a transient run reaches with constant inputs: every
         // bristle entered under these inputs, i.e. the march of newly entered bristles over
         // the whole strip at phase 0
+        self.out = if self.coulomb_path() {
+            self.steady_coulomb()
+        } else {
+            self.steady_march()
+        };
+        Ok(self.out)
+    }
+
+    /// The steady march of every strip (the general path of [`Self::steady`]).
+    #[inline(never)]
+    fn steady_march(&mut self) -> Outputs {
         for j in 0..self.ny {
             self.head[j] = 0;
             self.phase[j] = 0.0;
             self.march_new(j, self.nx + 1, 0.0);
         }
-        self.out = self.integrate();
-        Ok(self.out)
+        self.integrate()
     }
 
     /// Raw state for serialization: (time, inputs, heads, phases, bristles, accumulators, initialized).
@@ -480,5 +501,82 @@ pub fn regime_name(r: Regime) -> &'static str {
         Regime::Elastic => "elastic",
         Regime::Plastic => "plastic",
         Regime::Sliding => "sliding",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Grid;
+
+    /// The lockstep FASTSIM march equals the general march and quadrature to rounding, in
+    /// forces, moment, heat, regime fractions and every bristle's state.
+    #[test]
+    fn steady_coulomb_equals_general_march() {
+        let cases = [
+            (0.002, 0.0, 0.0, 20.0),
+            (0.01, 0.004, 0.0, 20.0),
+            (-0.03, 0.0, 0.8, 5.0),
+            (0.3, -0.02, -1.5, 30.0),
+            (0.01, 0.0, 0.0, 0.0),
+        ];
+        for (nx, ny) in [(40, 21), (13, 5), (7, 1), (20, 4)] {
+            for preset in ["fastsim", "fastsim on a line contact"] {
+                let mut cfg = Config::preset("fastsim").expect("preset");
+                if preset != "fastsim" {
+                    cfg.geometry = Geometry::Line {
+                        r: 0.3,
+                        width: 0.01,
+                    };
+                }
+                cfg.grid = Grid { nx, ny };
+                let mut c = Contact::new(&cfg).expect("contact");
+                assert!(c.coulomb_path());
+                for &(cx, cy, spin, v) in &cases {
+                    let i = Inputs {
+                        cx,
+                        cy,
+                        spin,
+                        v,
+                        fn_n: 80e3,
+                        ..Inputs::default()
+                    };
+                    let fast = c.steady(&i).expect("steady");
+                    let st_fast = c.st.clone();
+                    let slow = c.steady_march();
+                    let close =
+                        |x: f64, y: f64| (x - y).abs() <= 1e-12 * (1.0 + x.abs().max(y.abs()));
+                    for (name, x, y) in [
+                        ("fx", fast.fx, slow.fx),
+                        ("fy", fast.fy, slow.fy),
+                        ("mz", fast.mz, slow.mz),
+                        ("p_fric", fast.p_fric, slow.p_fric),
+                        ("frac_elastic", fast.frac_elastic, slow.frac_elastic),
+                        ("frac_sliding", fast.frac_sliding, slow.frac_sliding),
+                        ("t_mean", fast.t_mean, slow.t_mean),
+                        ("t_max", fast.t_max, slow.t_max),
+                    ] {
+                        assert!(close(x, y), "{preset} {nx}x{ny} {i:?}: {name} {x} vs {y}");
+                    }
+                    for (n, (p, q)) in st_fast.iter().zip(c.st.iter()).enumerate() {
+                        assert_eq!(p.regime, q.regime, "{preset} {nx}x{ny} {i:?}: node {n}");
+                        for (x, y) in [
+                            (p.tau[0], q.tau[0]),
+                            (p.tau[1], q.tau[1]),
+                            (p.u[0], q.u[0]),
+                            (p.u[1], q.u[1]),
+                            (p.sh, q.sh),
+                            (p.q, q.q),
+                            (p.temp, q.temp),
+                        ] {
+                            assert!(
+                                close(x, y),
+                                "{preset} {nx}x{ny} {i:?}: node {n}: {x} vs {y}\n{p:?}\n{q:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 }
