@@ -5,6 +5,9 @@ use crate::bristle::{self, BristleState};
 use crate::material::NodeP;
 use crate::thermal::{self, StepFactors, N_KERNEL};
 
+/// Entries of the kernel-factor cache (distinct sub-step lengths kept).
+const FAC_CACHE: usize = 4;
+
 /// Per-sub-step kinematic context of one strip.
 pub(super) struct Kin {
     h: f64,
@@ -206,22 +209,42 @@ impl Contact {
         // update in place (the state vectors are moved out so `self` stays borrowable)
         let mut st = std::mem::take(&mut self.st);
         let mut accs = std::mem::take(&mut self.acc);
-        for slot in skip..inside.min(end) {
-            let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
-            let id = self.idx(j, slot);
-            self.move_bristle(j, xi, &kin, &fac, &mut st[id], &mut accs[id]);
+        if phase_end == 1.0 {
+            // full-cell moves end on the lattice nodes: their pressure parts are cached
+            let nodes = self.lattice_nodes(j);
+            for slot in skip..inside.min(end) {
+                let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
+                let id = self.idx(j, slot);
+                let (s, ac) = (&mut st[id], &mut accs[id]);
+                self.move_bristle_with(j, xi, &nodes[slot + 1], &kin, &fac, s, ac);
+            }
+            self.np_cache[j] = nodes;
+        } else {
+            for slot in skip..inside.min(end) {
+                let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
+                let id = self.idx(j, slot);
+                self.move_bristle(j, xi, &kin, &fac, &mut st[id], &mut accs[id]);
+            }
         }
         self.st = st;
         self.acc = accs;
     }
 
-    /// Kernel factors of a sub-step of length `h` (identity when no heat flows).
-    pub(super) fn factors(&self, h: f64, heat: bool) -> StepFactors {
-        if self.r.temperature && heat {
-            self.kernel.factors(h)
-        } else {
-            StepFactors::identity(h)
+    /// Kernel factors of a sub-step of length `h` (identity when no heat flows), from a small
+    /// cache keyed by h: a march and the full-cell sub-steps of a step repeat the same h.
+    pub(super) fn factors(&mut self, h: f64, heat: bool) -> StepFactors {
+        if !(self.r.temperature && heat) {
+            return StepFactors::identity(h);
         }
+        if let Some((_, f)) = self.fac_cache.iter().find(|(hh, _)| *hh == h) {
+            return *f;
+        }
+        let f = self.kernel.factors(h);
+        if self.fac_cache.len() >= FAC_CACHE {
+            self.fac_cache.remove(0);
+        }
+        self.fac_cache.push((h, f));
+        f
     }
 
     /// Moves one bristle of strip `j` over `kin.dist` to its end position `xi_end`

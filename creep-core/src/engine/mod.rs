@@ -98,6 +98,8 @@ pub struct Contact {
     /// for the peak pressure in `bound_cache_p0`.
     bound_cache: Vec<[f64; advance::LANES]>,
     bound_cache_p0: f64,
+    /// Kernel factors of recent sub-step lengths (h, factors).
+    fac_cache: Vec<(f64, thermal::StepFactors)>,
     /// How a step advances the bristles (see [`Scheme`]).
     scheme: Scheme,
     /// Values of the extra (data) columns the formula effects use, by name.
@@ -172,6 +174,7 @@ impl Contact {
             np_cache_p0: vec![f64::NAN; ny],
             bound_cache: Vec::new(),
             bound_cache_p0: f64::NAN,
+            fac_cache: Vec::new(),
             extra: Vec::new(),
             fvars: Vec::new(),
             fstatic: [1.0; 5],
