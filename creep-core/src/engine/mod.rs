@@ -235,6 +235,12 @@ impl Contact {
             };
             let c = kalker::coefficients(ka, kb, self.r.nu)?;
             self.flex = kalker::flexibilities(ka, kb, self.r.g, &c);
+            if self.patch.line {
+                // a 2-D strip: Carter's flexibility, not the elliptic one (kalker.rs)
+                let (lx, ly) = kalker::line_flexibilities(a, self.r.g, self.r.nu);
+                self.flex.0 = lx;
+                self.flex.1 = ly;
+            }
             self.patch_fn = inputs.fn_n;
         }
         self.inputs = *inputs;
@@ -248,6 +254,20 @@ impl Contact {
                     self.patch.a * 1e3
                 );
                 if !self.warnings.contains(&msg) {
+                    self.warnings.push(msg);
+                }
+            }
+            if (1.0 + inputs.cx).abs() < 0.1 {
+                let msg = format!(
+                    "wheel surface speed v (1 + c_x) = {:.3} m/s is below 10 % of v (c_x = {}, wheel slide): the heat partition of Eq. 4.30 sends the heat into the rail and the seed's flash temperature (Eq. 4.34, evaluated in the layer's time) then underestimates the contact temperature by about sqrt(v_w/v), down to none for a locked wheel (docs/model.md section 11)",
+                    inputs.v * (1.0 + inputs.cx).abs(),
+                    inputs.cx
+                );
+                if !self
+                    .warnings
+                    .iter()
+                    .any(|w| w.starts_with("wheel surface speed"))
+                {
                     self.warnings.push(msg);
                 }
             }
