@@ -42,7 +42,9 @@ pub fn polach(cfg: &Config, i: &Inputs) -> Result<Outputs> {
         out.frac_elastic = 1.0;
         return Ok(out);
     }
-    let w = s * i.v;
+    // slip velocity: creepages are slip velocities over |v| (v < 0 rolls backwards, the
+    // mirror image, with the same forces for the same creepages: spin is not in this form)
+    let w = s * i.v.abs();
     let mu = p.si(P::PolMu0) * ((1.0 - p.si(P::PolA)) * (-p.si(P::PolB) * w).exp() + p.si(P::PolA));
     let cjj = ((c.c11 * i.cx / s).powi(2) + (c.c22 * i.cy / s).powi(2)).sqrt();
     let eps = PI * p.si(P::G) * a * b * cjj * s / (4.0 * i.fn_n * mu.max(1e-12));

@@ -1,7 +1,9 @@
 //! Versioned, explicit byte format of a model's complete hidden state (bristle grid, heat histories) for save/restore.
 //!
 //! Layout (little endian): magic `ECFSTATE`, format version u32, config JSON (u32 length +
-//! UTF-8), time f64, inputs 6 x f64, outputs 13 x f64, initialized u8, then for bristle
+//! UTF-8), time f64, inputs 6 x f64, outputs 13 x f64, flags u8 (bit 0: initialized, bit 1:
+//! rolling backwards; version 2 on, version 1 had only bit 0; for a contact rolling backwards
+//! inputs, outputs and bristles are those of its mirrored frame), then for bristle
 //! models: nx u32, ny u32, kernel size u32, heads ny x u32, phases ny x f64, per bristle
 //! u(2) tau(2) sh temp q as 7 x f64 and regime u8, then the heat accumulators n x K x f64.
 //! Restoring checks the magic, the version, the configuration and every size, so a state
@@ -15,7 +17,7 @@ use crate::thermal::N_KERNEL;
 
 const MAGIC: &[u8; 8] = b"ECFSTATE";
 /// Current version of the byte format.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 struct W(Vec<u8>);
 impl W {
@@ -124,7 +126,7 @@ impl Model {
                 w.f(time);
                 put_inputs(&mut w, &inputs);
                 put_outputs(&mut w, &out);
-                w.b(init as u8);
+                w.b(init as u8 | (c.reversed() as u8) << 1);
                 let (nx, ny) = c.grid_size();
                 w.u(nx as u32);
                 w.u(ny as u32);
@@ -158,9 +160,9 @@ impl Model {
             return Err(CreepError::State("not an ECF state (bad magic)".into()));
         }
         let v = r.u()?;
-        if v != VERSION {
+        if v != VERSION && v != 1 {
             return Err(CreepError::State(format!(
-                "state format version {v}, this build reads version {VERSION}"
+                "state format version {v}, this build reads versions 1 to {VERSION}"
             )));
         }
         let n = r.u()? as usize;
@@ -178,7 +180,12 @@ impl Model {
         let time = r.f()?;
         let inputs = get_inputs(&mut r)?;
         let out = get_outputs(&mut r)?;
-        let init = r.b()? != 0;
+        let flags = r.b()?;
+        if flags > 3 || (v == 1 && flags > 1) {
+            return Err(CreepError::State(format!("bad flags byte {flags}")));
+        }
+        let init = flags & 1 != 0;
+        let reversed = flags & 2 != 0;
         match self {
             Model::Polach {
                 inputs: i,
@@ -241,7 +248,7 @@ impl Model {
                         data.len() - r.p
                     )));
                 }
-                c.set_raw_state(time, inputs, head, phase, st, acc, init, out)?;
+                c.set_raw_state(time, inputs, head, phase, st, acc, init, out, reversed)?;
             }
         }
         Ok(())

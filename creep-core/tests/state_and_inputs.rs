@@ -40,7 +40,7 @@ fn bad_inputs_are_rejected_with_the_field_name() {
     let cases = [
         (
             Inputs {
-                v: -1.0,
+                v: -1001.0, // negative speeds roll backwards (reversed_rolling.rs); this is out of range
                 ..vectron(0.01, 5.0)
             },
             "v",

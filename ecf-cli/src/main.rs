@@ -187,7 +187,7 @@ struct ModelArgs {
     /// Coulomb friction coefficient (FASTSIM), dimensionless
     #[arg(long)]
     mu: Option<f64>,
-    /// Vehicle speed, m/s (>= 0)
+    /// Rolling (vehicle) speed, m/s; negative: rolling backwards (creepages over |v|)
     #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
     v_mps: f64,
     /// Normal force, kN (> 0)
@@ -283,8 +283,8 @@ impl ModelArgs {
         if let Some(g) = &self.grid {
             cfg.grid = Grid::parse(g)?;
         }
-        if !(self.v_mps.is_finite() && self.v_mps >= 0.0) {
-            return Err(bad("--v-mps", self.v_mps, "must be finite and >= 0 m/s (standstill v = 0: forces from creepage alone, no frictional heat)"));
+        if !(self.v_mps.is_finite() && self.v_mps.abs() <= 1000.0) {
+            return Err(bad("--v-mps", self.v_mps, "must be finite, within [-1000, 1000] m/s (negative: rolling backwards; standstill v = 0: forces from creepage alone, no frictional heat)"));
         }
         if !(self.fn_kn.is_finite() && self.fn_kn > 0.0) {
             return Err(bad("--fn-kN", self.fn_kn, "must be finite and > 0 kN"));

@@ -94,7 +94,7 @@ fn step_sine_and_field_run() {
 #[test]
 fn bad_input_names_the_flag_and_range_and_fails() {
     let cases: &[(&[&str], &str)] = &[
-        (&["curve", "--v-mps", "-5", "--cx", "0.01"], "--v-mps"),
+        (&["curve", "--v-mps", "-1500", "--cx", "0.01"], "--v-mps"), // negative rolls backwards; this is out of range
         (&["curve", "--v-mps", "NaN", "--cx", "0.01"], "--v-mps"),
         (&["curve", "--fn-kn", "0", "--cx", "0.01"], "--fn-kN"),
         (&["curve", "--grid", "0x5", "--cx", "0.01"], "--grid"),

@@ -360,10 +360,10 @@ pub fn table() -> Vec<Var> {
     };
     use Causality::*;
     let ins: [(In, Option<&'static str>, f64, &str); 6] = [
-        (In::Cx, None, inp.cx, "longitudinal creepage c_x (relative slip velocity / v); > 0 traction (driven wheel turns faster than it rolls), < 0 braking; Fx has the sign of cx"),
-        (In::Cy, None, inp.cy, "lateral creepage c_y (relative lateral slip velocity / v); gives Fy of the same sign"),
-        (In::Spin, Some("1/m"), inp.spin, "spin creepage c_s (relative rotation rate about the contact normal / v)"),
-        (In::V, Some("m/s"), inp.v, "rolling (vehicle) speed, >= 0; 0 is standstill (no advection, no heat)"),
+        (In::Cx, None, inp.cx, "longitudinal creepage c_x = v_x/|v| (slip velocity of the wheel against the rail along x, the rolling direction, over the rolling speed); > 0 traction (driven wheel turns faster than it rolls), < 0 braking; Fx (force on the wheel) has the sign of cx"),
+        (In::Cy, None, inp.cy, "lateral creepage c_y = v_y/|v| (lateral slip velocity of the wheel, y = z x x with z the contact normal into the wheel); Fy has its sign (Kalker's eta with the force on the wheel, i.e. Kalker's traction negated)"),
+        (In::Spin, Some("1/m"), inp.spin, "spin creepage omega_z/|v| (relative rotation rate of the wheel about the contact normal z, into the wheel); spin > 0 gives Fy > 0 and Mz > 0 at small creepage"),
+        (In::V, Some("m/s"), inp.v, "rolling (vehicle) speed; < 0 rolls backwards (the mirror image; the bristles stay in the contact when the sign changes); 0 is standstill (no advection, no heat)"),
         (In::Fn, Some("N"), inp.fn_n, "normal force on the contact; <= 0 is lift-off (all forces zero)"),
         (In::TBulk, Some("degC"), inp.t_bulk, "bulk (ambient) temperature of wheel and rail"),
     ];

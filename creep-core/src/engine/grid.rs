@@ -98,10 +98,12 @@ impl Contact {
                     * (self.inputs.cx - self.inputs.spin * self.eta[j] * self.patch.b)
                         .hypot(self.inputs.cy + self.inputs.spin * xi * self.patch.a);
                 let m = self.material(&np, s.temp, s.u[0].hypot(s.u[1]), slip);
+                // rolling backwards: the grid is held mirrored (x -> -x, tau_x -> -tau_x)
+                let sgn = if self.reversed { -1.0 } else { 1.0 };
                 FieldPoint {
-                    x: xi * self.patch.a,
+                    x: sgn * xi * self.patch.a,
                     tau: (s.tau[0] * s.tau[0] + s.tau[1] * s.tau[1]).sqrt(),
-                    tau_x: s.tau[0],
+                    tau_x: sgn * s.tau[0],
                     tau_c1: m.tc1,
                     tau_c2: m.tc2,
                     p: np.p,

@@ -8,13 +8,14 @@ pub const V_STANDSTILL: f64 = 1e-6;
 /// Operating point of one contact; may change every step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inputs {
-    /// Longitudinal creepage c_x, - (Eq. 4.12; positive: traction, force F_x > 0).
+    /// Longitudinal creepage c_x = v_x/|v|, - (Eq. 4.12; positive: traction, force F_x > 0).
     pub cx: f64,
     /// Lateral creepage c_y, -.
     pub cy: f64,
     /// Spin creepage c_s, 1/m.
     pub spin: f64,
-    /// Vehicle speed v, m/s (>= 0).
+    /// Rolling (vehicle) speed v, m/s; negative: rolling backwards (the mirror image of rolling
+    /// forwards; creepages are slip velocities over |v|).
     pub v: f64,
     /// Normal force F_N, N.
     pub fn_n: f64,
@@ -41,7 +42,7 @@ impl Inputs {
         check_range("cx", self.cx, -10.0, 10.0, "(-)")?;
         check_range("cy", self.cy, -10.0, 10.0, "(-)")?;
         check_range("spin", self.spin, -1e4, 1e4, "1/m")?;
-        check_range("v", self.v, 0.0, 1000.0, "m/s")?;
+        check_range("v", self.v, -1000.0, 1000.0, "m/s")?;
         check_range("F_N", self.fn_n, 0.0, 1e8, "N")?;
         check_range("T_bulk", self.t_bulk, -273.15, 2000.0, "degC")?;
         Ok(())
@@ -104,7 +105,7 @@ impl Outputs {
 /// One point of the fields along the strip nearest y = 0 (seed Fig. 4.9, 4.10).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FieldPoint {
-    /// Position in rolling direction, m (leading edge at +a).
+    /// Position along x, m (leading edge at +a; at -a when rolling backwards).
     pub x: f64,
     /// Shear stress |tau|, Pa.
     pub tau: f64,

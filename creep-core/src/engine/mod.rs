@@ -102,6 +102,9 @@ pub struct Contact {
     fac_cache: Vec<(f64, thermal::StepFactors)>,
     /// How a step advances the bristles (see [`Scheme`]).
     scheme: Scheme,
+    /// Rolling backwards (the last non-zero speed was negative): the grid and `inputs`,
+    /// `out` are held in the mirrored frame x -> -x, where the contact rolls forwards.
+    reversed: bool,
     /// Values of the extra (data) columns the formula effects use, by name.
     extra: Vec<(String, f64)>,
     /// Formula variables: local placeholders, operating point, columns (see `formula`).
@@ -170,6 +173,7 @@ impl Contact {
             initialized: false,
             warnings: Vec::new(),
             scheme: Scheme::CellsMarch,
+            reversed: false,
             np_cache: vec![Vec::new(); ny],
             np_cache_p0: vec![f64::NAN; ny],
             bound_cache: Vec::new(),
@@ -204,12 +208,71 @@ impl Contact {
 
     /// Last outputs.
     pub fn outputs(&self) -> Outputs {
-        self.out
+        mirror_outputs(self.out, self.reversed)
     }
 
     /// Last inputs.
     pub fn inputs(&self) -> Inputs {
-        self.inputs
+        mirror_inputs(&self.inputs, self.reversed)
+    }
+
+    /// True while the contact rolls backwards (the last non-zero speed was negative).
+    pub fn reversed(&self) -> bool {
+        self.reversed
+    }
+
+    /// The rolling direction for `inputs`: backwards for v < 0, forwards for v > 0, unchanged
+    /// at standstill.
+    fn wants_reversed(&self, inputs: &Inputs) -> bool {
+        if inputs.v < 0.0 {
+            true
+        } else if inputs.v > 0.0 {
+            false
+        } else {
+            self.reversed
+        }
+    }
+
+    /// Rolling backwards is rolling forwards in the mirror image x -> -x (docs/model.md
+    /// section 3, "Reversed rolling"): the bristles in the contact stay in it, mirrored in
+    /// place (their slots reversed, the phase p -> 1 - p, u_x and tau_x negated; heat
+    /// histories unchanged).
+    fn mirror_grid(&mut self) {
+        let nx = self.nx;
+        for j in 0..self.ny {
+            let p = self.phase[j];
+            let old: Vec<(BristleState, [f64; N_KERNEL])> = (0..=nx)
+                .map(|slot| {
+                    let id = self.idx(j, slot);
+                    (self.st[id], self.acc[id])
+                })
+                .collect();
+            let base = j * (nx + 1);
+            for (slot, (mut b, a)) in old.into_iter().enumerate() {
+                b.u[0] = -b.u[0];
+                b.tau[0] = -b.tau[0];
+                // node positions xi_k = l - (k + p) dxi map to -xi_k
+                if p > 0.0 && slot == nx {
+                    continue; // it had left at the old trailing edge: ahead of the new leading one
+                }
+                let new = if p > 0.0 { nx - 1 - slot } else { nx - slot };
+                self.st[base + new] = b;
+                self.acc[base + new] = a;
+            }
+            if p > 0.0 {
+                // past the new trailing edge lies the unloaded material that was ahead of the
+                // old leading edge (the quadrature interpolates towards it)
+                self.st[base + nx] = BristleState {
+                    temp: self.inputs.t_bulk,
+                    ..BristleState::default()
+                };
+                self.acc[base + nx] = [0.0; N_KERNEL];
+            }
+            self.head[j] = 0;
+            if p > 0.0 {
+                self.phase[j] = 1.0 - p;
+            }
+        }
     }
 
     /// Warnings raised since the last call (e.g. Péclet condition not met), drained.
@@ -277,10 +340,26 @@ impl Contact {
 
     /// Advances the contact by `dt` seconds with `inputs` held constant over the step
     /// (Eq. 4.15). With the effect `transient` off, returns the quasi-steady state instead.
+    /// A negative speed rolls the contact backwards (the mirror image, see
+    /// [`Contact::reversed`]); a change of direction keeps the bristles in the contact.
     pub fn step(&mut self, dt: f64, inputs: &Inputs) -> Result<Outputs> {
         check_range("dt", dt, 0.0, 1e3, "s")?;
+        inputs.validate()?;
+        let rev = self.wants_reversed(inputs);
+        if rev != self.reversed {
+            if self.initialized {
+                self.mirror_grid();
+            }
+            self.reversed = rev;
+        }
+        let out = self.step_forward(dt, &mirror_inputs(inputs, rev))?;
+        Ok(mirror_outputs(out, rev))
+    }
+
+    /// [`Self::step`] in the frame where the contact rolls forwards (v >= 0).
+    fn step_forward(&mut self, dt: f64, inputs: &Inputs) -> Result<Outputs> {
         if !self.r.transient || !self.initialized {
-            let out = self.steady(inputs)?;
+            let out = self.steady_forward(inputs)?;
             self.time += dt;
             return Ok(out);
         }
@@ -401,6 +480,14 @@ impl Contact {
     /// Sets the grid to the steady state of constant `inputs` and returns its outputs.
     /// Does not advance time.
     pub fn steady(&mut self, inputs: &Inputs) -> Result<Outputs> {
+        inputs.validate()?;
+        self.reversed = self.wants_reversed(inputs);
+        let out = self.steady_forward(&mirror_inputs(inputs, self.reversed))?;
+        Ok(mirror_outputs(out, self.reversed))
+    }
+
+    /// [`Self::steady`] in the frame where the contact rolls forwards (v >= 0).
+    fn steady_forward(&mut self, inputs: &Inputs) -> Result<Outputs> {
         self.set_inputs(inputs)?;
         self.initialized = true;
         if inputs.fn_n <= F_LIFT_OFF {
@@ -466,6 +553,7 @@ impl Contact {
         acc: Vec<[f64; N_KERNEL]>,
         initialized: bool,
         out: Outputs,
+        reversed: bool,
     ) -> Result<()> {
         if head.len() != self.ny
             || phase.len() != self.ny
@@ -485,7 +573,13 @@ impl Contact {
                 "corrupt ring-buffer head or phase".into(),
             ));
         }
+        if inputs.v < 0.0 {
+            return Err(CreepError::State(
+                "negative speed in a state (its inputs are held in the forward frame)".into(),
+            ));
+        }
         self.time = time;
+        self.reversed = reversed;
         self.set_inputs(&inputs)?;
         self.head = head;
         self.phase = phase;
@@ -524,6 +618,33 @@ pub fn regime_name(r: Regime) -> &'static str {
         Regime::Elastic => "elastic",
         Regime::Plastic => "plastic",
         Regime::Sliding => "sliding",
+    }
+}
+
+/// Inputs of the mirror image x -> -x (`on`): c_x, spin and v change sign, c_y does not
+/// (creepages are slip velocities over |v|). An involution.
+pub(crate) fn mirror_inputs(i: &Inputs, on: bool) -> Inputs {
+    if !on {
+        return *i;
+    }
+    Inputs {
+        cx: -i.cx,
+        spin: -i.spin,
+        v: -i.v,
+        ..*i
+    }
+}
+
+/// Outputs of the mirror image x -> -x (`on`): F_x, f and M_z change sign. An involution.
+fn mirror_outputs(o: Outputs, on: bool) -> Outputs {
+    if !on {
+        return o;
+    }
+    Outputs {
+        fx: -o.fx,
+        f: -o.f,
+        mz: -o.mz,
+        ..o
     }
 }
 

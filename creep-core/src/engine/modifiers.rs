@@ -22,7 +22,8 @@ impl Contact {
         if self.cfg.formulas.is_empty() && self.cfg.custom.is_empty() {
             return Ok(());
         }
-        let i = &self.inputs;
+        // the user's operating point (v < 0 when rolling backwards), not the mirrored frame's
+        let i = &super::mirror_inputs(&self.inputs, self.reversed);
         let mut v = vec![0.0; crate::formula::LOCAL.len()];
         v.extend([i.v, i.fn_n / 1e3, i.cx, i.cy, i.spin]);
         let mut fstatic = [1.0; 5];
