@@ -95,11 +95,19 @@ fn standstill_and_large_creepage() {
         "{:?}",
         f.messages()
     );
-    assert_eq!(f.set_real("v", -3.0), ERROR);
+    // negative speeds roll backwards (docs/fmu.md); beyond 1000 m/s is refused
+    assert_eq!(f.set_real("v", -3000.0), ERROR);
     assert!(
-        has(&f, log::Level::Error, &["v = -3"]),
+        has(&f, log::Level::Error, &["v = -3000"]),
         "{:?}",
         f.messages()
+    );
+    assert_eq!(f.set_real("cx", 0.01), OK);
+    assert_eq!(f.set_real("v", -3.0), OK);
+    assert_eq!(f.step(1e-3), OK);
+    assert!(
+        f.get("Fx") > 0.0,
+        "traction while rolling backwards: Fx has the sign of cx"
     );
 }
 
