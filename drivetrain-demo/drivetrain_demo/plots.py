@@ -187,7 +187,7 @@ def plot_stability_map(path, rows, x="v_mps", y="preset", title=""):
     ncol = min(3, max(1, len(panels)))
     nrow = math.ceil(len(panels) / ncol) if panels else 1
     fig, axes = plt.subplots(nrow, ncol, figsize=(5.2 * ncol + 1.2, 0.55 * len(ylabels) * nrow + 2.2 * nrow),
-                             squeeze=False)
+                             squeeze=False, constrained_layout=True)
     norm = LogNorm(vmin=1e-4, vmax=1.0)
     sc = None
     for i, pk in enumerate(panels):

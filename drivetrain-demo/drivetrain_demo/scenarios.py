@@ -160,6 +160,11 @@ def log(msg):
     print(msg, file=sys.stderr, flush=True)
 
 
+def _say(cfg: RunConfig, msg):
+    if cfg.progress:
+        log(msg)
+
+
 def resolve_contact(cfg: RunConfig):
     """('fmu', path) or ('curve', None)."""
     if cfg.contact in ("fmu", "auto"):
@@ -302,7 +307,7 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
     t_end = cfg.resolved_t_end()
     kind, path = resolve_contact(cfg)
     tag = cfg.tag
-    log(f"[{tag}] contact: {kind}{' ' + str(path) if path else ''}, grid {cfg.grid or 'FMU default'}, "
+    _say(cfg, f"[{tag}] contact: {kind}{' ' + str(path) if path else ''}, grid {cfg.grid or 'FMU default'}, "
         f"transient {cfg.transient}, h = {cfg.h * 1e3:g} ms, t_end = {t_end:g} s")
     t0 = time.perf_counter()
     curve = SteadyCurve(cfg, p, kind, path)
@@ -422,7 +427,7 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
         osc_txt = f"no oscillation (p-p of c_x,L below {100 * 10 * OSC_THRESHOLD:g} % throughout)"
     else:
         osc_txt = f"no sustained oscillation (response {f_tr:.2f} Hz decays)"
-    log(f"[{tag}] {osc_txt}, oscillation p-p {100 * amp:.3f} % (last 0.5 s), "
+    _say(cfg, f"[{tag}] {osc_txt}, oscillation p-p {100 * amp:.3f} % (last 0.5 s), "
         f"predicted {lin['predicted_frequency_hz']:.2f} Hz {'UNSTABLE' if lin['predicted_unstable'] else 'stable'}, "
         f"real-time factor {stats['real_time_factor']:.3f}")
     return _json_clean(summary), results
@@ -434,7 +439,7 @@ def run_sine(cfg: RunConfig, p: Params, write=True, plot=True):
     t_end = cfg.resolved_t_end()
     kind, path = resolve_contact(cfg)
     tag = cfg.tag
-    log(f"[{tag}] contact: {kind}, c_m = {cm}, c_A = {ca}, f0 = {f0} Hz, h = {cfg.h * 1e3:g} ms, t_end = {t_end:.4g} s")
+    _say(cfg, f"[{tag}] contact: {kind}, c_m = {cm}, c_A = {ca}, f0 = {f0} Hz, h = {cfg.h * 1e3:g} ms, t_end = {t_end:.4g} s")
     curve = SteadyCurve(cfg, p, kind, path)
     c_grid = np.linspace(0.0, 0.6, 121)
     f_grid = curve(c_grid)
@@ -492,6 +497,6 @@ def run_sine(cfg: RunConfig, p: Params, write=True, plot=True):
                "spectrum": (freqs, spec)}
     if write:
         _write_outputs(cfg, summary, results, results["res"], c_grid, f_grid, plot, "plot_sine")
-    log(f"[{tag}] f over last cycle {summary['f_range_last_cycle']}, loop area {summary['hysteresis_loop_area']:.4g}, "
+    _say(cfg, f"[{tag}] f over last cycle {summary['f_range_last_cycle']}, loop area {summary['hysteresis_loop_area']:.4g}, "
         f"CV(RMSE) vs steady {summary['cv_rmse_vs_steady_percent']:.2f} %")
     return _json_clean(summary), results
