@@ -415,7 +415,7 @@ def run_sweep(sweep_file, out, scheduler: str | None = None, workers: int | None
                 rec = run_case(c, str(fmu_path), spec["save_every"])
                 recs[cid] = _store(out, cid, c, rec, fmu_sha)
                 bar.update(1)
-        else:
+        elif todo:
             _run_dask(todo, spec, fmu_path, fmu_sha, out, scheduler, workers, recs, bar)
     finally:
         bar.close()
