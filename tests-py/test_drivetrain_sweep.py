@@ -185,3 +185,11 @@ def test_example_sweep_file_loads():
     spec = sweep.load_sweep(ROOT / "drivetrain-demo" / "examples" / "sweep.toml")
     cases = sweep.expand(spec)
     assert len([c for c in cases if c["analysis"] == "simulate"]) == 20
+
+
+def test_unknown_fmu_parameter_axis_refused_before_running(tmp_path, fmu_path):
+    p = tmp_path / "s.toml"
+    p.write_text("[axes.fmu_param]\nfriction = [0.2, 0.3]\n")
+    with pytest.raises(ConfigError, match="FMU parameter 'friction' unknown"):
+        sweep.run_sweep(p, tmp_path / "out", scheduler="serial", fmu=fmu_path, progress=False)
+    assert not (tmp_path / "out" / "sweep.csv").exists()

@@ -383,6 +383,13 @@ def run_sweep(sweep_file, out, scheduler: str | None = None, workers: int | None
         raise FMUNotFoundError("sweep needs the contact FMU (scripts/build-fmu.sh, --fmu or $ECF_FMU_PATH)")
     ident = contact.fmu_identity(fmu_path)
     fmu_sha = ident["sha256"]
+    from fmpy import read_model_description
+    fmu_params = sorted(v.name for v in read_model_description(str(fmu_path)).modelVariables
+                        if v.causality == "parameter")
+    asked = set(spec["fmu_param"]) | {k[10:] for k in spec["axes"] if k.startswith("fmu_param.")}
+    for n in sorted(asked - set(fmu_params)):
+        raise ConfigError(f"sweep file {sweep_file}: FMU parameter {n!r} unknown (the FMU's parameters: "
+                          f"{', '.join(fmu_params)})")
     out = Path(out)
     (out / "cases").mkdir(parents=True, exist_ok=True)
     cases = expand(spec)
