@@ -181,3 +181,20 @@ def test_shipped_baseline_is_valid():
 def test_contact_uses_no_private_fmpy_attributes():
     src = (ROOT / "drivetrain-demo" / "drivetrain_demo" / "contact.py").read_text()
     assert "._functions" not in src and "_fmi2Function" not in src
+
+
+def test_fmu_content_hash_ignores_zip_time_stamps(fmu_path, tmp_path):
+    """Sweep resume keys on the FMU's content: an identical rebuild (new zip time stamps) keeps it, a changed member does not."""
+    import zipfile
+    src = zipfile.ZipFile(fmu_path)
+    same, changed = tmp_path / "same.fmu", tmp_path / "changed.fmu"
+    for dst, touch in ((same, None), (changed, "modelDescription.xml")):
+        with zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as z:
+            for info in src.infolist():
+                data = src.read(info.filename)
+                if info.filename == touch:
+                    data += b"\n"
+                z.writestr(zipfile.ZipInfo(info.filename, date_time=(2001, 2, 3, 4, 5, 6)), data)
+    a, b, c = (contact.fmu_identity(p) for p in (fmu_path, same, changed))
+    assert a["sha256"] != b["sha256"] and a["content_sha256"] == b["content_sha256"]
+    assert c["content_sha256"] != a["content_sha256"]

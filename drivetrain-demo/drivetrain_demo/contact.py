@@ -65,13 +65,21 @@ def _fmu_identity(path: str, mtime: float, size: int) -> dict:
     with open(path, "rb") as fh:
         for chunk in iter(lambda: fh.read(1 << 20), b""):
             h.update(chunk)
-    return {"path": str(path), "sha256": h.hexdigest(), "model_name": md.modelName, "guid": md.guid,
-            "version": md.version, "generation_tool": md.generationTool}
+    # the .fmu's own hash changes with the zip's time stamps on every rebuild; the content hash
+    # (names and bytes of the members) changes only when the FMU does
+    import zipfile
+    c = hashlib.sha256()
+    with zipfile.ZipFile(path) as z:
+        for n in sorted(z.namelist()):
+            c.update(n.encode() + b"\0" + hashlib.sha256(z.read(n)).digest())
+    return {"path": str(path), "sha256": h.hexdigest(), "content_sha256": c.hexdigest(), "model_name": md.modelName,
+            "guid": md.guid, "version": md.version, "generation_tool": md.generationTool}
 
 
 def fmu_identity(path) -> dict:
-    """What identifies the FMU a result was made with: path, sha256 of the .fmu file, modelName,
-    guid, version and generationTool from its modelDescription.xml."""
+    """What identifies the FMU a result was made with: path, sha256 of the .fmu file, content_sha256
+    (of its members' names and bytes: equal for identical rebuilds), modelName, guid, version and
+    generationTool from its modelDescription.xml."""
     st = os.stat(path)
     return dict(_fmu_identity(str(path), st.st_mtime, st.st_size))
 

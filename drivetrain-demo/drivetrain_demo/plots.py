@@ -170,7 +170,7 @@ def plot_stability_map(path, rows, x="v_mps", y="preset", title=""):
     black bar in each y row; the predicted-unstable x ranges are shaded."""
     from matplotlib.colors import LogNorm
 
-    ignore = {x, y, "case_id", "status", "error", "t_end_s", "trace_file", "summary_file", "fmu_sha256",
+    ignore = {x, y, "case_id", "status", "error", "t_end_s", "trace_file", "summary_file", "fmu_content_sha256",
               "project_version", "analysis", "scenario"}
     inputs = ["model", "preset", "v_mps", "FN_kN", "cx_target", "h_ms", "grid"] + \
         sorted({k for r in rows for k in r if k.startswith(("set.", "fmu_param."))})

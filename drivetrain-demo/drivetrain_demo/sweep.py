@@ -15,8 +15,8 @@ Output in DIR:
   sweep.csv, sweep.parquet (when pyarrow is installed)   the tidy table, one row per case;
   stability_map.png      amplitude over x (speed) and y (condition) per panel, with the linear
                          analysis's stability boundary.
-The case id is a hash of the case's inputs, the FMU's sha256 and the project version: a
-different FMU or version never resumes from old results.
+The case id is a hash of the case's inputs, the FMU's content hash and the project version: a
+different FMU or version never resumes from old results (an identical rebuild does).
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ ANALYSES = ("simulate", "modal")
 
 # the tidy table: column -> meaning (with unit); docs/drivetrain.md repeats this list
 COLUMNS = {
-    "case_id": "hash of the case's inputs, FMU sha256 and project version",
+    "case_id": "hash of the case's inputs, FMU content hash and project version",
     "status": "ok | failed",
     "error": "exception type and message of a failed case",
     "analysis": "simulate (co-simulation + linear analysis) | modal (linear analysis only)",
@@ -71,7 +71,7 @@ COLUMNS = {
     "wall_s": "wall-clock time of the whole case on its worker, s",
     "trace_file": "time-series CSV, relative to the output directory",
     "summary_file": "case record (inputs, full JSON summary), relative to the output directory",
-    "fmu_sha256": "sha256 of the contact FMU file",
+    "fmu_content_sha256": "sha256 of the contact FMU's content (members' names and bytes)",
     "project_version": "drivetrain_demo version",
 }
 # columns that differ between identical runs (timing): left out when tables are compared
@@ -277,7 +277,7 @@ def _store(out: Path, cid: str, case: dict, rec: dict, fmu_sha: str):
     """Writes the traces and the case record (atomically; the record last, so it means 'done')."""
     traces = rec.pop("_traces", None)
     rec["case_id"] = cid
-    rec["fmu_sha256"] = fmu_sha
+    rec["fmu_content_sha256"] = fmu_sha
     rec["project_version"] = __version__
     rec["trace_file"] = None
     if traces is not None:
@@ -315,7 +315,7 @@ def _row(cid, case, rec):
     row["wall_s"] = rec.get("wall_s")
     row["trace_file"] = rec.get("trace_file") or ""
     row["summary_file"] = f"cases/{cid}.json"
-    row["fmu_sha256"] = rec.get("fmu_sha256")
+    row["fmu_content_sha256"] = rec.get("fmu_content_sha256")
     row["project_version"] = rec.get("project_version")
     return row
 
@@ -382,7 +382,7 @@ def run_sweep(sweep_file, out, scheduler: str | None = None, workers: int | None
     if fmu_path is None:
         raise FMUNotFoundError("sweep needs the contact FMU (scripts/build-fmu.sh, --fmu or $ECF_FMU_PATH)")
     ident = contact.fmu_identity(fmu_path)
-    fmu_sha = ident["sha256"]
+    fmu_sha = ident["content_sha256"]
     from fmpy import read_model_description
     fmu_params = sorted(v.name for v in read_model_description(str(fmu_path)).modelVariables
                         if v.causality == "parameter")
