@@ -198,3 +198,17 @@ def test_fmu_content_hash_ignores_zip_time_stamps(fmu_path, tmp_path):
     a, b, c = (contact.fmu_identity(p) for p in (fmu_path, same, changed))
     assert a["sha256"] != b["sha256"] and a["content_sha256"] == b["content_sha256"]
     assert c["content_sha256"] != a["content_sha256"]
+
+
+def test_atomic_write_leaves_no_partial_file_and_normal_permissions(tmp_path):
+    from drivetrain_demo import io_util
+    target = tmp_path / "x.csv"
+    with pytest.raises(RuntimeError):
+        with io_util.atomic_path(target) as tmp:
+            tmp.write_text("half")
+            raise RuntimeError("interrupted")
+    assert not target.exists() and list(tmp_path.iterdir()) == []
+    io_util.write_csv(target, {"t_s": [0.0, 1.0]})
+    umask = os.umask(0)
+    os.umask(umask)
+    assert target.stat().st_mode & 0o777 == 0o666 & ~umask
