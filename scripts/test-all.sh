@@ -17,3 +17,5 @@ echo "== benchmark smoke run (scripts/bench.sh --quick; figures only, no asserti
 bash scripts/bench.sh --quick
 echo "== pytest tests-py" >&2
 .venv/bin/python -m pytest -q tests-py
+echo "== drive-train frequency regression (python -m drivetrain_demo regress drivetrain-demo/baselines/ci.json)" >&2
+PYTHONPATH=drivetrain-demo .venv/bin/python -m drivetrain_demo regress drivetrain-demo/baselines/ci.json --quiet

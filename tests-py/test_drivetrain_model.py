@@ -147,4 +147,4 @@ def test_cli_json_summary_keys_with_stand_in_contact(tmp_path):
     for k in ("dominant_frequency_hz", "oscillation_amplitude", "predicted_frequency_hz", "predicted_unstable",
               "real_time_factor"):
         assert k in s
-    assert (tmp_path / "step_fastsim_v5.csv").is_file() and (tmp_path / "step_fastsim_v5.png").is_file()
+    assert (tmp_path / "step_fastsim_default_v5.csv").is_file() and (tmp_path / "step_fastsim_default_v5.png").is_file()

@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from . import contact, simulate
+from . import contact, cosim
 from .params import Params
 
 
@@ -42,7 +42,7 @@ def run_bench(p: Params, fmu_path, grid=(16, 9), h=2.5e-4, v=5.0, t_sim=1.0, mod
     n = int(round(t_sim / h))
     out = {"grid": list(grid), "h_s": h, "v_mps": v, "steps_per_simulated_s": 1.0 / h}
     # 1. loop with null contacts
-    _, st = simulate.simulate(p, _NullContact(), _NullContact(), v, lambda t: 0.15, t_sim, h, progress=False)
+    _, st = cosim.simulate(p, _NullContact(), _NullContact(), v, lambda t: 0.15, t_sim, h, progress=False)
     out["loop_python_per_step_us"] = 1e6 * (st["wall_s"] - st["contact_s"]) / n
     out["loop_python_s_per_simulated_s"] = (st["wall_s"] - st["contact_s"]) / t_sim
     # 2. FFI overhead per step
@@ -86,7 +86,7 @@ def run_bench(p: Params, fmu_path, grid=(16, 9), h=2.5e-4, v=5.0, t_sim=1.0, mod
         clock2["t"] = t
 
     out["two_contacts_serial_s_per_simulated_s"] = _per_step(serial, n) * n / t_sim
-    pair = simulate._ParallelPair(cL, cS)
+    pair = cosim._ParallelPair(cL, cS)
 
     def par(k):
         t = clock2["t"]

@@ -8,13 +8,16 @@ Both offer the same small interface used by the co-simulation:
     c.close()
 FMU variables used (names as in the FMU's modelDescription): inputs cx, cy, spin, v, FN,
 T_bulk; outputs Fx, f, T_max, P_fric, frac_*; parameters model, preset, transient, grid.
-The hot path calls fmi2SetReal/fmi2DoStep/fmi2GetReal through the FMU's ctypes functions
-with pre-built arrays (fmpy's wrappers allocate arrays on every call).
+The hot path calls fmpy's public low-level functions fmi2SetReal/fmi2DoStep/fmi2GetReal of
+FMU2Slave (status checked by fmpy) with pre-built ctypes arrays (the convenience wrappers
+setReal/getReal allocate arrays on every call).
 """
 
 from __future__ import annotations
 
 import ctypes
+import functools
+import hashlib
 import os
 import shutil
 import subprocess
@@ -24,20 +27,61 @@ from pathlib import Path
 
 import numpy as np
 
+from .errors import ConfigError, DrivetrainError, FMUError, FMUNotFoundError
+
 REPO = Path(__file__).resolve().parents[2]
 FMU_DEFAULT = REPO / "dist" / "ecf_contact.fmu"
 ECF_CLI = REPO / "target" / "release" / "ecf"
 EXTRA_OUTPUTS = ("T_max", "T_mean", "P_fric", "frac_elastic", "frac_plastic", "frac_sliding")
 
 
-def find_fmu(path: str | None = None) -> Path | None:
-    """The contact FMU: explicit path, $ECF_FMU_PATH, $ECF_CONTACT_FMU, or dist/ecf_contact.fmu."""
-    for cand in (path, os.environ.get("ECF_FMU_PATH"), os.environ.get("ECF_CONTACT_FMU"), FMU_DEFAULT):
-        if cand and Path(cand).is_file():
-            return Path(cand)
+FMU_ENV_VARS = ("ECF_FMU_PATH", "ECF_CONTACT_FMU")
+
+
+def find_fmu(path: str | os.PathLike | None = None) -> Path | None:
+    """The contact FMU: the explicit `path`, else $ECF_FMU_PATH, else $ECF_CONTACT_FMU, else
+    dist/ecf_contact.fmu of the source tree; None when none of them is set/present.
+
+    Raises FMUNotFoundError when an explicit path or a set environment variable names a file
+    that does not exist (a typo should not silently fall back to another FMU)."""
     if path:
-        raise SystemExit(f"error: FMU {path} not found")
-    return None
+        if not Path(path).is_file():
+            raise FMUNotFoundError(f"FMU {path} not found")
+        return Path(path)
+    for var in FMU_ENV_VARS:
+        cand = os.environ.get(var)
+        if cand:
+            if not Path(cand).is_file():
+                raise FMUNotFoundError(f"${var} = {cand}: file not found")
+            return Path(cand)
+    return FMU_DEFAULT if FMU_DEFAULT.is_file() else None
+
+
+@functools.lru_cache(maxsize=16)
+def _fmu_identity(path: str, mtime: float, size: int) -> dict:
+    from fmpy import read_model_description
+    md = read_model_description(path)
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for chunk in iter(lambda: fh.read(1 << 20), b""):
+            h.update(chunk)
+    # the .fmu's own hash changes with the zip's time stamps on every rebuild; the content hash
+    # (names and bytes of the members) changes only when the FMU does
+    import zipfile
+    c = hashlib.sha256()
+    with zipfile.ZipFile(path) as z:
+        for n in sorted(z.namelist()):
+            c.update(n.encode() + b"\0" + hashlib.sha256(z.read(n)).digest())
+    return {"path": str(path), "sha256": h.hexdigest(), "content_sha256": c.hexdigest(), "model_name": md.modelName,
+            "guid": md.guid, "version": md.version, "generation_tool": md.generationTool}
+
+
+def fmu_identity(path) -> dict:
+    """What identifies the FMU a result was made with: path, sha256 of the .fmu file, content_sha256
+    (of its members' names and bytes: equal for identical rebuilds), modelName, guid, version and
+    generationTool from its modelDescription.xml."""
+    st = os.stat(path)
+    return dict(_fmu_identity(str(path), st.st_mtime, st.st_size))
 
 
 class CurveContact:
@@ -55,7 +99,7 @@ class CurveContact:
     @staticmethod
     def _curve(cx, model, v, F_N, T_bulk, preset, grid):
         if not ECF_CLI.is_file():
-            raise SystemExit(f"error: {ECF_CLI} missing: run `cargo build --release -p ecf-cli`")
+            raise DrivetrainError(f"{ECF_CLI} missing: run `cargo build --release -p ecf-cli`")
         args = [str(ECF_CLI), "curve", "--model", model, "--v-mps", str(v), "--fn-kn", str(F_N / 1e3),
                 "--t-bulk-c", str(T_bulk), "--cx", ",".join(f"{c:.6g}" for c in cx)]
         if preset:
@@ -107,17 +151,32 @@ class FMUContact:
                              modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
         self.name = name
         self.log_counts = {}
+        self.log_lines = []
         self._callbacks = self._make_callbacks()
-        self.fmu.instantiate(callbacks=self._callbacks)
-        self.fmu.setupExperiment(startTime=start_time)
-        self._set_parameters(model, preset, grid, transient, params or {})
-        self.fmu.enterInitializationMode()
-        self._set_real({"cx": 0.0, "cy": 0.0, "spin": 0.0, "v": v, "FN": F_N, "T_bulk": T_bulk})
-        self.fmu.exitInitializationMode()
-        # hot path: raw ctypes calls with fixed arrays
-        f = self.fmu._functions
+        from fmpy.fmi1 import FMICallException
+        self._instantiated = False
+        try:
+            self.fmu.instantiate(callbacks=self._callbacks)
+            self._instantiated = True
+            self.fmu.setupExperiment(startTime=start_time)
+            self._set_parameters(model, preset, grid, transient, params or {})
+            self.fmu.enterInitializationMode()
+            self._set_real({"cx": 0.0, "cy": 0.0, "spin": 0.0, "v": v, "FN": F_N, "T_bulk": T_bulk})
+            self.fmu.exitInitializationMode()
+        except (FMICallException, Exception) as e:
+            if self._instantiated:
+                try:
+                    self.fmu.freeInstance()
+                except Exception:  # noqa: BLE001 - the original error matters
+                    pass
+            if isinstance(e, DrivetrainError):
+                raise
+            log = "; ".join(self.log_lines[-3:]) or str(e)
+            raise FMUError(f"contact FMU {Path(fmu_path).name} ({name}, model {model!r}, preset {preset!r}) "
+                           f"refused the set-up: {log}") from None
+        # hot path: fmpy's public FMI functions (status checked by fmpy) with fixed arrays
         self._c = self.fmu.component
-        self._setReal, self._getReal, self._doStep = f["fmi2SetReal"], f["fmi2GetReal"], f["fmi2DoStep"]
+        self._setReal, self._getReal, self._doStep = self.fmu.fmi2SetReal, self.fmu.fmi2GetReal, self.fmu.fmi2DoStep
         self._vr_in = (ctypes.c_uint * 1)(self.vr("cx"))
         self._val_in = (ctypes.c_double * 1)()
         out_names = ["Fx", "f"] + [n for n in EXTRA_OUTPUTS if n in self.vars]
@@ -138,6 +197,8 @@ class FMUContact:
 
         def logger(env, instance, status, category, message):
             key = status_names.get(status, str(status))
+            if status >= 2 and len(self.log_lines) < 20:
+                self.log_lines.append(message.decode("utf-8", "replace") if message else "")
             n = self.log_counts.get(key, 0) + 1
             self.log_counts[key] = n
             if n <= self.MAX_LOG_LINES:
@@ -157,8 +218,7 @@ class FMUContact:
         try:
             return self.vars[name].valueReference
         except KeyError:
-            raise SystemExit(
-                f"error: FMU has no variable '{name}' (has: {', '.join(sorted(self.vars))})") from None
+            raise FMUError(f"FMU has no variable '{name}' (has: {', '.join(sorted(self.vars))})") from None
 
     def _set_real(self, d):
         self.fmu.setReal([self.vr(k) for k in d], list(d.values()))
@@ -173,33 +233,39 @@ class FMUContact:
         if tname:
             fmu.setBoolean([self.vr(tname)], [bool(transient)])
         elif not transient:
-            raise SystemExit("error: FMU has no `transient` parameter; cannot switch the transient model off")
+            raise FMUError("FMU has no `transient` parameter; cannot switch the transient model off")
         if grid:
             names = grid_variable_names(self.vars)
             if not names:
-                raise SystemExit("error: FMU exposes no grid-size parameter; drop --grid")
+                raise FMUError("FMU exposes no grid-size parameter; drop --grid")
             fmu.setInteger([self.vr(names[0]), self.vr(names[1])], [int(grid[0]), int(grid[1])])
         for k, val in params.items():
             sv = self.vars.get(k)
-            if sv is None:
-                raise SystemExit(f"error: FMU has no parameter '{k}'")
-            if sv.type == "Real":
-                fmu.setReal([sv.valueReference], [float(val)])
-            elif sv.type == "Integer":
-                fmu.setInteger([sv.valueReference], [int(val)])
-            elif sv.type == "Boolean":
-                fmu.setBoolean([sv.valueReference], [bool(val)])
-            else:
-                fmu.setString([sv.valueReference], [str(val)])
+            if sv is None or sv.causality != "parameter":
+                names = sorted(n for n, x in self.vars.items() if x.causality == "parameter")
+                raise ConfigError(f"--fmu-param {k}: the FMU has no parameter '{k}' (parameters: {', '.join(names)})")
+            try:
+                if sv.type == "Real":
+                    fmu.setReal([sv.valueReference], [float(val)])
+                elif sv.type == "Integer":
+                    fmu.setInteger([sv.valueReference], [int(val)])
+                elif sv.type == "Boolean":
+                    fmu.setBoolean([sv.valueReference], [_to_bool(k, val)])
+                else:
+                    fmu.setString([sv.valueReference], [str(val)])
+            except ValueError:
+                raise ConfigError(f"--fmu-param {k}={val}: expected a {sv.type} value") from None
 
     def step(self, t, h, cx):
         self._val_in[0] = cx
-        if self._setReal(self._c, self._vr_in, 1, self._val_in) > 1:
-            raise RuntimeError(f"fmi2SetReal failed at t = {t}")
-        if self._doStep(self._c, t, h, 1) > 1:
-            raise RuntimeError(f"fmi2DoStep failed at t = {t}, cx = {cx}")
-        if self._getReal(self._c, self._vr_out, len(self._out_names), self._val_out) > 1:
-            raise RuntimeError(f"fmi2GetReal failed at t = {t}")
+        try:
+            self._setReal(self._c, self._vr_in, 1, self._val_in)
+            self._doStep(self._c, t, h, 1)
+            self._getReal(self._c, self._vr_out, len(self._out_names), self._val_out)
+        except Exception as e:  # fmpy's FMICallException (status > fmi2Warning)
+            log = "; ".join(self.log_lines[-3:])
+            raise FMUError(f"contact FMU ({self.name}) failed at t = {t:.6g} s, cx = {cx:.6g}: {e}"
+                           + (f" ({log})" if log else "")) from None
         self.f = self._val_out[1]
         return self._val_out[0], self._val_out[1]
 
@@ -248,4 +314,15 @@ def make_contact(kind, fmu_path=None, **kw):
         return CurveContact(**kw)
     if kind == "fmu":
         return FMUContact(fmu_path, **kw)
-    raise SystemExit(f"error: unknown contact kind {kind!r} (fmu or curve)")
+    raise ConfigError(f"--contact {kind}: unknown (accepted: fmu, curve)")
+
+
+def _to_bool(name, val):
+    if isinstance(val, bool):
+        return val
+    t = str(val).strip().lower()
+    if t in ("1", "true", "yes", "on"):
+        return True
+    if t in ("0", "false", "no", "off"):
+        return False
+    raise ConfigError(f"--fmu-param {name}={val}: expected a Boolean (true/false/1/0)")

@@ -7,6 +7,8 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .errors import ConfigError
+
 DEFAULT_FILE = Path(__file__).with_name("data") / "locomotive.toml"
 
 
@@ -67,10 +69,12 @@ def load(path: str | Path | None = None) -> Params:
     path = Path(path) if path else DEFAULT_FILE
     try:
         raw = tomllib.loads(path.read_text())
+    except IsADirectoryError:
+        raise ConfigError(f"parameter file {path} is a directory") from None
     except FileNotFoundError:
-        raise SystemExit(f"error: parameter file {path} not found") from None
+        raise ConfigError(f"parameter file {path} not found") from None
     except tomllib.TOMLDecodeError as e:
-        raise SystemExit(f"error: parameter file {path}: {e}") from None
+        raise ConfigError(f"parameter file {path}: {e}") from None
     docs = {}
     out = {}
     for section, cls in (("drivetrain", Drivetrain), ("controller", Controller), ("contact", ContactPoint)):
@@ -78,17 +82,57 @@ def load(path: str | Path | None = None) -> Params:
         vals = {}
         for f in dataclasses.fields(cls):
             if f.name not in sec:
-                raise SystemExit(f"error: parameter file {path}: missing [{section}.{f.name}]")
+                raise ConfigError(f"parameter file {path}: missing [{section}.{f.name}]")
             entry = sec[f.name]
             if not isinstance(entry, dict) or "value" not in entry or "unit" not in entry:
-                raise SystemExit(f"error: parameter file {path}: [{section}.{f.name}] needs value and unit")
+                raise ConfigError(f"parameter file {path}: [{section}.{f.name}] needs value and unit")
             v = float(entry["value"])
             if section != "contact" and not v >= 0.0:
-                raise SystemExit(f"error: parameter file {path}: {section}.{f.name} = {v} must be >= 0")
+                raise ConfigError(f"parameter file {path}: {section}.{f.name} = {v} must be >= 0")
             vals[f.name] = v
             docs[f"{section}.{f.name}"] = entry
         out[section] = cls(**vals)
     for k in ("J_L", "J_S", "J_G", "J_M", "j_G", "R"):
         if getattr(out["drivetrain"], k) <= 0:
-            raise SystemExit(f"error: parameter file {path}: drivetrain.{k} must be > 0")
+            raise ConfigError(f"parameter file {path}: drivetrain.{k} must be > 0")
     return Params(out["drivetrain"], out["controller"], out["contact"], str(path), docs)
+
+
+def override_names() -> dict:
+    """Names accepted by `with_overrides` (and `--set`), by section."""
+    return {"drivetrain": [f.name for f in dataclasses.fields(Drivetrain)],
+            "controller": [f.name for f in dataclasses.fields(Controller)],
+            "contact": [f.name for f in dataclasses.fields(ContactPoint)]}
+
+
+def with_overrides(p: Params, overrides) -> Params:
+    """Copy of `p` with values replaced: `overrides` is a mapping (or NAME=VALUE pairs) of field
+    names of [drivetrain], [controller] or [contact] (e.g. {"C_L": 1e7, "K_p": 1500, "F_N": 9e4}),
+    SI units as in the parameter file. Raises ConfigError naming the option (`--set NAME`) for an
+    unknown name, a non-number or a value out of range."""
+    items = overrides.items() if hasattr(overrides, "items") else overrides
+    names = override_names()
+    for k, v in items:
+        try:
+            x = float(v)
+        except (TypeError, ValueError):
+            raise ConfigError(f"--set {k}={v}: value is not a number") from None
+        if x != x or x in (float("inf"), float("-inf")):
+            raise ConfigError(f"--set {k}={v}: value must be finite")
+        if k in names["drivetrain"]:
+            if x < 0 or (x == 0 and k in ("J_L", "J_S", "J_G", "J_M", "j_G", "R")):
+                raise ConfigError(f"--set {k}={v}: must be {'> 0' if k in ('J_L', 'J_S', 'J_G', 'J_M', 'j_G', 'R') else '>= 0'}")
+            p = p.with_drivetrain(**{k: x})
+        elif k in names["controller"]:
+            if x < 0:
+                raise ConfigError(f"--set {k}={v}: must be >= 0")
+            p = p.with_controller(**{k: x})
+        elif k in names["contact"]:
+            if k == "F_N" and not x > 0:
+                raise ConfigError(f"--set F_N={v}: the normal load must be > 0 N")
+            p = dataclasses.replace(p, contact=dataclasses.replace(p.contact, **{k: x}))
+        else:
+            raise ConfigError(f"--set {k}: unknown (drive-train: {', '.join(sorted(names['drivetrain']))}; "
+                              f"controller: {', '.join(sorted(names['controller']))}; "
+                              f"contact: {', '.join(names['contact'])})")
+    return p

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import matplotlib
@@ -150,3 +151,90 @@ def plot_compare(path: Path, runs: list) -> Path:
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
+
+
+def _num(v):
+    try:
+        x = float(v)
+    except (TypeError, ValueError):
+        return float("nan")
+    return x
+
+
+def plot_stability_map(path, rows, x="v_mps", y="preset", title=""):
+    """Stability map of a sweep: x (numeric, e.g. speed) against y (e.g. condition), one panel per
+    combination of the other varying inputs. Simulated cases are coloured by the oscillation
+    amplitude (p-p of c_x,L, log scale; circle: sustained oscillation, square: none, grey x: failed).
+    The linear analysis's stability boundary (predicted damping ratio = 0, interpolated linearly in x
+    between swept values, from modal rows where present, else from simulate rows) is drawn as a
+    black bar in each y row; the predicted-unstable x ranges are shaded."""
+    from matplotlib.colors import LogNorm
+
+    ignore = {x, y, "case_id", "status", "error", "t_end_s", "trace_file", "summary_file", "fmu_content_sha256",
+              "project_version", "analysis", "scenario"}
+    inputs = ["model", "preset", "v_mps", "FN_kN", "cx_target", "h_ms", "grid"] + \
+        sorted({k for r in rows for k in r if k.startswith(("set.", "fmu_param."))})
+    varying = [k for k in inputs if k not in ignore and len({str(r.get(k)) for r in rows}) > 1]
+
+    def pkey(r):
+        return tuple(str(r.get(k)) for k in varying)
+
+    panels = sorted({pkey(r) for r in rows})[:12]
+    ylabels = []
+    for r in rows:
+        if str(r.get(y)) not in ylabels:
+            ylabels.append(str(r.get(y)))
+    ncol = min(3, max(1, len(panels)))
+    nrow = math.ceil(len(panels) / ncol) if panels else 1
+    fig, axes = plt.subplots(nrow, ncol, figsize=(5.2 * ncol + 1.2, 0.55 * len(ylabels) * nrow + 2.2 * nrow),
+                             squeeze=False, constrained_layout=True)
+    norm = LogNorm(vmin=1e-4, vmax=1.0)
+    sc = None
+    for i, pk in enumerate(panels):
+        ax = axes[i // ncol][i % ncol]
+        sel = [r for r in rows if pkey(r) == pk]
+        for j, yl in enumerate(ylabels):
+            ry = [r for r in sel if str(r.get(y)) == yl]
+            sim = [r for r in ry if r.get("analysis") == "simulate"]
+            ok = [r for r in sim if r.get("status") == "ok"]
+            bad = [r for r in sim if r.get("status") != "ok"]
+            for marker, grp in (("o", [r for r in ok if str(r.get("sustained_oscillation")) == "True"]),
+                                ("s", [r for r in ok if str(r.get("sustained_oscillation")) != "True"])):
+                if grp:
+                    amp = np.clip([_num(r["oscillation_pp_cx_L"]) for r in grp], 1e-4, 1.0)
+                    sc = ax.scatter([_num(r[x]) for r in grp], [j] * len(grp), c=amp, norm=norm, cmap="viridis",
+                                    marker=marker, s=110, edgecolors="k", linewidths=0.6, zorder=3)
+            if bad:
+                ax.scatter([_num(r[x]) for r in bad], [j] * len(bad), marker="x", c="0.5", s=80, zorder=3)
+            # linear boundary from the predicted damping ratio over x
+            lin = [r for r in ry if r.get("analysis") == "modal" and r.get("status") == "ok"] or ok
+            pts = sorted((_num(r[x]), _num(r["predicted_damping_ratio"])) for r in lin
+                         if math.isfinite(_num(r.get("predicted_damping_ratio"))))
+            for (x0, z0), (x1, z1) in zip(pts[:-1], pts[1:]):
+                if z0 < 0 and z1 < 0:
+                    ax.fill_between([x0, x1], j - 0.35, j + 0.35, color="tab:red", alpha=0.12, lw=0)
+                if z0 * z1 < 0 and x1 > x0:
+                    xb = x0 + (x1 - x0) * (-z0) / (z1 - z0)
+                    ax.plot([xb, xb], [j - 0.42, j + 0.42], "k-", lw=2.2, zorder=4)
+                    lo, hi = (x0, xb) if z0 < 0 else (xb, x1)
+                    ax.fill_between([lo, hi], j - 0.35, j + 0.35, color="tab:red", alpha=0.12, lw=0)
+            if len(pts) == 1 and pts[0][1] < 0:
+                ax.fill_between([pts[0][0] - 0.3, pts[0][0] + 0.3], j - 0.35, j + 0.35, color="tab:red", alpha=0.12,
+                                lw=0)
+        ax.set_yticks(range(len(ylabels)))
+        ax.set_yticklabels(ylabels)
+        ax.set_ylim(-0.6, len(ylabels) - 0.4)
+        ax.set_xlabel({"v_mps": "v / (m/s)", "FN_kN": "F_N / kN", "cx_target": "c_x target / -"}.get(x, x))
+        ax.set_ylabel(y)
+        ax.grid(alpha=0.3)
+        ax.set_title(", ".join(f"{k} = {v}" for k, v in zip(varying, pk)) or "all cases", fontsize=9)
+    for k in range(len(panels), nrow * ncol):
+        axes[k // ncol][k % ncol].axis("off")
+    if sc is not None:
+        cb = fig.colorbar(sc, ax=axes.ravel().tolist(), shrink=0.9)
+        cb.set_label("p-p of $c_{x,L}$, last 0.5 s (dimensionless)")
+    fig.suptitle(f"stability map {title}: o sustained oscillation, \u25a1 none, x failed; "
+                 "red band / black bar: linear analysis unstable / boundary (\u03b6 = 0)", fontsize=9)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return Path(path)

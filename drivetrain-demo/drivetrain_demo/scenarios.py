@@ -8,7 +8,6 @@ sine: prescribed c_x = c_m + c_A sin(2 pi f0 t), c_m = 12 %, c_A = 10 %, f0 = 53
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 import sys
@@ -18,7 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import analysis, contact, simulate, stability
+from . import __version__, analysis, contact, cosim, io_util, stability
+from .errors import ConfigError, DrivetrainError, FMUNotFoundError
 from .params import Params
 
 RAMP_PEAK = 0.50
@@ -27,6 +27,21 @@ STEP_TARGET = 0.15
 SINE = {"cm": 0.12, "ca": 0.10, "f0": 53.0}
 OSC_THRESHOLD = 1e-3  # p-p creepage above which an oscillation counts as sustained
 DEFAULT_T_END = {"step": 2.5, "ramp": RAMP_DURATION, "sine": 10 / 53.0}
+SCENARIOS = ("step", "ramp", "sine")
+MODELS = ("ecf", "fastsim", "polach")
+# Contact conditions accepted by --preset (ECF parameter sets of the FMU; seed Tab. 4.1, Tab. 5.4).
+# twin_disc is not among them: it is the 47 mm disc rig's line contact, not a wheel on a rail.
+CONDITIONS = ("table4.1", "dry", "wet", "dry_sanded", "wet_sanded")
+# FASTSIM under a condition: the seed fitted mu = 0.25 to the dry vehicle tests at 5 m/s (Sec. 3.1.1,
+# Fig. 3.8); for another condition mu is scaled by the ratio of the adhesion maxima of the ECF
+# steady curves of that condition and of dry (v = 5 m/s, F_N = 110 kN, T_bulk = 20 degC, FMU grid
+# 80x21): mu_P = 0.25 * max f_ECF,P / max f_ECF,dry. Computed by `condition_mu()`, checked by a test,
+# documented in docs/drivetrain.md.
+FASTSIM_MU_DRY = 0.25
+FASTSIM_MU = {"table4.1": 0.248, "dry": 0.25, "wet": 0.223, "dry_sanded": 0.25, "wet_sanded": 0.25}
+# minimum run length (s) per scenario: the analysis windows must fit inside the run
+MIN_T_END = {"step": 0.8, "ramp": 1.0}
+MIN_SINE_PERIODS = 2
 
 
 @dataclass
@@ -49,10 +64,105 @@ class RunConfig:
     progress: bool = True
     c_target: float = STEP_TARGET  # step: desired creepage after the step, -
     sine: dict = field(default_factory=lambda: dict(SINE))
+    overrides: dict = field(default_factory=dict)  # --set values applied to the parameters (provenance only)
+    save_every: int = 1  # write every N-th row of the trace CSV (the analysis uses every row)
+
+    @property
+    def condition(self) -> str:
+        """Label of the contact condition in file names: the preset, or `default` (the model's own)."""
+        return self.preset or "default"
+
+    @property
+    def tag(self) -> str:
+        """Base name of the output files: <scenario>_<model>_<condition>_v<v>."""
+        return f"{self.scenario}_{self.model}_{self.condition}_v{self.v:g}"
+
+    def resolved_t_end(self) -> float:
+        """Simulated time, s: t_end, or the scenario's default (sine: 10 periods of f0)."""
+        if self.t_end:
+            return self.t_end
+        return 10 / self.sine["f0"] if self.scenario == "sine" else DEFAULT_T_END[self.scenario]
+
+
+def validate(cfg: RunConfig):
+    """Checks the options of a run; raises ConfigError naming the option and the accepted values."""
+    if cfg.scenario not in SCENARIOS:
+        raise ConfigError(f"scenario {cfg.scenario!r}: unknown (accepted: {', '.join(SCENARIOS)})")
+    if cfg.model not in MODELS:
+        raise ConfigError(f"--model {cfg.model}: unknown (accepted: {', '.join(MODELS)}, both)")
+    if cfg.preset is not None and cfg.preset not in CONDITIONS:
+        raise ConfigError(f"--preset {cfg.preset}: unknown (accepted: {', '.join(CONDITIONS)})")
+    if cfg.preset is not None and cfg.model == "polach":
+        raise ConfigError(f"--preset {cfg.preset} with --model polach: Polach's parameters exist only for the "
+                          "seed's vehicle tests (no preset); use --model ecf or fastsim for a condition")
+    if not (cfg.v > 0 and math.isfinite(cfg.v)):
+        raise ConfigError(f"--v-mps {cfg.v}: must be > 0 (m/s)")
+    if not (cfg.h > 0 and math.isfinite(cfg.h)):
+        raise ConfigError(f"--h-ms {cfg.h * 1e3:g}: must be > 0 (ms)")
+    if cfg.save_every < 1:
+        raise ConfigError(f"--save-every {cfg.save_every}: must be an integer >= 1")
+    if cfg.grid is not None:
+        nx, ny = cfg.grid
+        if not (2 <= nx <= 2000 and 1 <= ny <= 1000):
+            raise ConfigError(f"--grid {nx}x{ny}: need 2 <= NX <= 2000, 1 <= NY <= 1000")
+    if not (0.0 <= cfg.c_target <= 1.0):
+        raise ConfigError(f"--cx {cfg.c_target}: creepage must be in [0, 1] (dimensionless, 0.15 = 15 %)")
+    t_end = cfg.resolved_t_end()
+    if cfg.scenario == "sine":
+        need = MIN_SINE_PERIODS / cfg.sine["f0"]
+        if t_end < need - 1e-12:
+            raise ConfigError(f"--t-end {t_end:g}: too short for the sine analysis (last period of "
+                              f"{MIN_SINE_PERIODS} or more): need >= {need:.4g} s at f0 = {cfg.sine['f0']:g} Hz")
+    elif t_end < MIN_T_END[cfg.scenario]:
+        raise ConfigError(f"--t-end {t_end:g}: too short to analyse a {cfg.scenario} (the spectrum needs a settled "
+                          f"window of >= 0.5 s after 0.3 s): need >= {MIN_T_END[cfg.scenario]:g} s")
+    if t_end / cfg.h < 100:
+        raise ConfigError(f"--t-end {t_end:g} with --h-ms {cfg.h * 1e3:g}: fewer than 100 steps")
+
+
+def contact_settings(cfg: RunConfig):
+    """(FMU preset, FMU parameters, note) the contact of this run gets.
+
+    ECF: the preset as given. FASTSIM under a condition: no FMU preset (the `fastsim` model's own),
+    mu matched to the condition (FASTSIM_MU), unless --fmu-param mu=... is given."""
+    params = dict(cfg.fmu_params)
+    if cfg.model == "fastsim" and cfg.preset is not None:
+        note = None
+        if "mu" not in params:
+            params["mu"] = condition_mu(cfg.preset)
+            note = (f"FASTSIM under condition {cfg.preset!r}: mu = {params['mu']:.3f} = 0.25 x max f_ECF,{cfg.preset} / "
+                    "max f_ECF,dry (seed Sec. 3.1.1: mu = 0.25 fitted to the dry vehicle tests; docs/drivetrain.md)")
+        return None, params, note
+    return cfg.preset, params, None
+
+
+def condition_mu(preset: str, fmu_path=None) -> float:
+    """FASTSIM friction coefficient matched to a contact condition (see FASTSIM_MU). Values not in the
+    table are computed from the FMU's ECF steady curves (needs the FMU)."""
+    if preset not in CONDITIONS:
+        raise ConfigError(f"--preset {preset}: unknown (accepted: {', '.join(CONDITIONS)})")
+    if FASTSIM_MU.get(preset) is not None and fmu_path is None:
+        return FASTSIM_MU[preset]
+    return round(FASTSIM_MU_DRY * ecf_adhesion_max(preset, fmu_path) / ecf_adhesion_max("dry", fmu_path), 3)
+
+
+def ecf_adhesion_max(preset: str, fmu_path=None, v=5.0, F_N=110e3, T_bulk=20.0) -> float:
+    """Maximum of the steady ECF curve f(c_x), c_x in 0-60 %, for a condition (FMU default grid)."""
+    path = contact.find_fmu(fmu_path)
+    if path is None:
+        raise FMUNotFoundError("the condition-matched FASTSIM mu needs the contact FMU (scripts/build-fmu.sh)")
+    cx = np.concatenate([np.linspace(0.005, 0.1, 39), np.linspace(0.11, 0.6, 50)])
+    f = contact.steady_curve_fmu(path, cx, model="ecf", v=v, F_N=F_N, T_bulk=T_bulk, preset=preset)
+    return float(np.max(f))
 
 
 def log(msg):
     print(msg, file=sys.stderr, flush=True)
+
+
+def _say(cfg: RunConfig, msg):
+    if cfg.progress:
+        log(msg)
 
 
 def resolve_contact(cfg: RunConfig):
@@ -62,19 +172,21 @@ def resolve_contact(cfg: RunConfig):
         if path:
             return "fmu", path
         if cfg.contact == "fmu":
-            raise SystemExit("error: contact FMU not found (build it with scripts/build-fmu.sh or pass --fmu)")
+            raise FMUNotFoundError("contact FMU not found (build it with scripts/build-fmu.sh, pass --fmu "
+                                   "or set $ECF_FMU_PATH)")
         log("warning: contact FMU not found, using the steady-curve stand-in (no contact dynamics)")
     return "curve", None
 
 
 def make_contacts(cfg: RunConfig, p: Params, kind, path, n=2):
     names = ("wheel_L", "wheel_S")
+    preset, fmu_params, _ = contact_settings(cfg)
     out = []
     for i in range(n):
-        kw = dict(model=cfg.model, v=cfg.v, F_N=p.contact.F_N, T_bulk=p.contact.T_bulk, preset=cfg.preset,
+        kw = dict(model=cfg.model, v=cfg.v, F_N=p.contact.F_N, T_bulk=p.contact.T_bulk, preset=preset,
                   grid=cfg.grid)
         if kind == "fmu":
-            kw.update(transient=cfg.transient, params=cfg.fmu_params, name=names[i])
+            kw.update(transient=cfg.transient, params=fmu_params, name=names[i])
         out.append(contact.make_contact(kind, fmu_path=path, **kw))
     return out
 
@@ -84,17 +196,21 @@ class SteadyCurve:
 
     def __init__(self, cfg: RunConfig, p: Params, kind, path):
         self.cfg, self.p, self.kind, self.path = cfg, p, kind, path
+        self.preset, self.fmu_params, _ = contact_settings(cfg)
         if kind == "curve":
+            if self.fmu_params:
+                raise ConfigError("--fmu-param (or a condition-matched FASTSIM mu) needs --contact fmu; "
+                                  "the steady-curve stand-in takes no FMU parameters")
             self._c = contact.CurveContact(model=cfg.model, v=cfg.v, F_N=p.contact.F_N, T_bulk=p.contact.T_bulk,
-                                           preset=cfg.preset, grid=cfg.grid)
+                                           preset=self.preset, grid=cfg.grid)
 
     def __call__(self, cx):
         cx = np.atleast_1d(np.asarray(cx, float))
         if self.kind == "curve":
             return self._c.steady_f(cx)
         return contact.steady_curve_fmu(self.path, cx, model=self.cfg.model, v=self.cfg.v, F_N=self.p.contact.F_N,
-                                        T_bulk=self.p.contact.T_bulk, preset=self.cfg.preset, grid=self.cfg.grid,
-                                        params=self.cfg.fmu_params)
+                                        T_bulk=self.p.contact.T_bulk, preset=self.preset, grid=self.cfg.grid,
+                                        params=self.fmu_params)
 
     def slope(self, c, dc=0.005):
         fm, f0, fp = self([max(c - dc, 0.0), c, c + dc])
@@ -106,14 +222,48 @@ def predict(p: Params, v, c, curve: SteadyCurve):
     return stability.analyse(p, v, c, f0, s)
 
 
-def write_csv(path: Path, cols: dict):
-    names = list(cols)
-    data = np.column_stack([cols[n] for n in names])
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(names)
-        for r in data:
-            w.writerow([f"{x:.9g}" for x in r])
+def write_csv(path: Path, cols: dict, every: int = 1):
+    """Atomic CSV writer (io_util.write_csv): every N-th row and the last."""
+    return io_util.write_csv(path, cols, every)
+
+
+def provenance(cfg: RunConfig, p: Params, kind, path) -> dict:
+    """What made a result: options, preset, every --set and --fmu-param, grid, FMU identity, versions."""
+    preset, fmu_params, note = contact_settings(cfg)
+    prov = {
+        "project_version": __version__,
+        "preset": cfg.preset,
+        "condition": cfg.condition,
+        "fmu_preset": preset,
+        "fmu_params": {k: (v if isinstance(v, (int, float, bool)) else str(v)) for k, v in fmu_params.items()},
+        "fmu_params_given": {k: str(v) for k, v in cfg.fmu_params.items()},
+        "overrides": {k: float(v) for k, v in cfg.overrides.items()},
+        "grid": list(cfg.grid) if cfg.grid else "FMU default",
+        "h_s": cfg.h,
+        "save_every": cfg.save_every,
+        "fmu_identity": contact.fmu_identity(path) if path else None,
+        "drivetrain_params": p.source,
+        "F_N_N": p.contact.F_N,
+        "T_bulk_C": p.contact.T_bulk,
+    }
+    if note:
+        prov["fastsim_mu_note"] = note
+    return prov
+
+
+def _write_outputs(cfg, summary, results, res_cols, c_grid, f_grid, plot, plot_fn):
+    out = Path(cfg.out)
+    out.mkdir(parents=True, exist_ok=True)
+    tag = cfg.tag
+    files = [write_csv(out / f"{tag}.csv", res_cols, cfg.save_every),
+             write_csv(out / f"{tag}_steady_curve.csv", {"cx": c_grid, "f": f_grid})]
+    if plot:
+        from . import plots
+        with io_util.atomic_path(out / f"{tag}.png") as tmp:
+            getattr(plots, plot_fn)(tmp, summary, results)
+        files.append(out / f"{tag}.png")
+    summary["files"] = [str(f) for f in files] + [str(out / f"{tag}.json")]
+    io_util.write_json(out / f"{tag}.json", _json_clean(summary))
 
 
 def _json_clean(o):
@@ -151,12 +301,13 @@ def c_des_function(cfg: RunConfig):
 
 def run(cfg: RunConfig, p: Params, write=True, plot=True):
     """Runs one scenario for one model. Returns (summary dict, results dict)."""
+    validate(cfg)
     if cfg.scenario == "sine":
         return run_sine(cfg, p, write, plot)
-    t_end = cfg.t_end or DEFAULT_T_END[cfg.scenario]
+    t_end = cfg.resolved_t_end()
     kind, path = resolve_contact(cfg)
-    tag = f"{cfg.scenario}_{cfg.model}_v{cfg.v:g}"
-    log(f"[{tag}] contact: {kind}{' ' + str(path) if path else ''}, grid {cfg.grid or 'FMU default'}, "
+    tag = cfg.tag
+    _say(cfg, f"[{tag}] contact: {kind}{' ' + str(path) if path else ''}, grid {cfg.grid or 'FMU default'}, "
         f"transient {cfg.transient}, h = {cfg.h * 1e3:g} ms, t_end = {t_end:g} s")
     t0 = time.perf_counter()
     curve = SteadyCurve(cfg, p, kind, path)
@@ -165,7 +316,7 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
     t_curve = time.perf_counter() - t0
     cL, cS = make_contacts(cfg, p, kind, path)
     try:
-        res, stats = simulate.simulate(p, cL, cS, cfg.v, c_des_function(cfg), t_end, cfg.h,
+        res, stats = cosim.simulate(p, cL, cS, cfg.v, c_des_function(cfg), t_end, cfg.h,
                                        parallel=cfg.parallel and kind == "fmu", progress=cfg.progress, label=tag)
     finally:
         cL.close()
@@ -253,6 +404,7 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
                      "python_and_drivetrain": stats["wall_s"] - stats["contact_s"], "steady_curve": t_curve},
         "parallel_contacts": stats["parallel_contacts"],
         "drivetrain_params": p.source,
+        "provenance": provenance(cfg, p, kind, path),
     }
     results = {"res": res, "spectrum": (freqs, spec), "curve": (c_grid, f_grid), "env": (env_t, env),
                "spectrum_transient": spec_tr}
@@ -268,23 +420,14 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
     else:
         summary["zoom_window_s"] = [max(0.0, t_end - 0.1), t_end]
     if write:
-        out = Path(cfg.out)
-        out.mkdir(parents=True, exist_ok=True)
-        write_csv(out / f"{tag}.csv", res)
-        write_csv(out / f"{tag}_steady_curve.csv", {"cx": c_grid, "f": f_grid})
-        files = [out / f"{tag}.csv", out / f"{tag}_steady_curve.csv"]
-        if plot:
-            from . import plots
-            files.append(plots.plot_run(out / f"{tag}.png", summary, results))
-        summary["files"] = [str(f) for f in files] + [str(out / f"{tag}.json")]
-        (out / f"{tag}.json").write_text(json.dumps(_json_clean(summary), indent=2))
+        _write_outputs(cfg, summary, results, res, c_grid, f_grid, plot, "plot_run")
     if summary["sustained_oscillation"]:
         osc_txt = f"dominant frequency {f_dom:.2f} Hz"
     elif cfg.scenario == "ramp":
         osc_txt = f"no oscillation (p-p of c_x,L below {100 * 10 * OSC_THRESHOLD:g} % throughout)"
     else:
         osc_txt = f"no sustained oscillation (response {f_tr:.2f} Hz decays)"
-    log(f"[{tag}] {osc_txt}, oscillation p-p {100 * amp:.3f} % (last 0.5 s), "
+    _say(cfg, f"[{tag}] {osc_txt}, oscillation p-p {100 * amp:.3f} % (last 0.5 s), "
         f"predicted {lin['predicted_frequency_hz']:.2f} Hz {'UNSTABLE' if lin['predicted_unstable'] else 'stable'}, "
         f"real-time factor {stats['real_time_factor']:.3f}")
     return _json_clean(summary), results
@@ -293,10 +436,10 @@ def run(cfg: RunConfig, p: Params, write=True, plot=True):
 def run_sine(cfg: RunConfig, p: Params, write=True, plot=True):
     """Prescribed sinusoidal creepage on one contact (no drive-train), hysteresis against the steady curve."""
     cm, ca, f0 = cfg.sine["cm"], cfg.sine["ca"], cfg.sine["f0"]
-    t_end = cfg.t_end or DEFAULT_T_END["sine"]
+    t_end = cfg.resolved_t_end()
     kind, path = resolve_contact(cfg)
-    tag = f"sine_{cfg.model}_v{cfg.v:g}"
-    log(f"[{tag}] contact: {kind}, c_m = {cm}, c_A = {ca}, f0 = {f0} Hz, h = {cfg.h * 1e3:g} ms, t_end = {t_end:.4g} s")
+    tag = cfg.tag
+    _say(cfg, f"[{tag}] contact: {kind}, c_m = {cm}, c_A = {ca}, f0 = {f0} Hz, h = {cfg.h * 1e3:g} ms, t_end = {t_end:.4g} s")
     curve = SteadyCurve(cfg, p, kind, path)
     c_grid = np.linspace(0.0, 0.6, 121)
     f_grid = curve(c_grid)
@@ -348,20 +491,12 @@ def run_sine(cfg: RunConfig, p: Params, write=True, plot=True):
         "linear_analysis": lin,
         "real_time_factor": wall / t_end,
         "real_time_factor_note": "wall-clock time of the stepping loop / simulated time (one contact)",
+        "provenance": provenance(cfg, p, kind, path),
     }
     results = {"res": {"t_s": t, "cx": cx, "f": f, "Fx_N": Fx, "T_max_C": Tmax}, "curve": (c_grid, f_grid),
                "spectrum": (freqs, spec)}
     if write:
-        out = Path(cfg.out)
-        out.mkdir(parents=True, exist_ok=True)
-        write_csv(out / f"{tag}.csv", results["res"])
-        write_csv(out / f"{tag}_steady_curve.csv", {"cx": c_grid, "f": f_grid})
-        files = [out / f"{tag}.csv", out / f"{tag}_steady_curve.csv"]
-        if plot:
-            from . import plots
-            files.append(plots.plot_sine(out / f"{tag}.png", summary, results))
-        summary["files"] = [str(x) for x in files] + [str(out / f"{tag}.json")]
-        (out / f"{tag}.json").write_text(json.dumps(_json_clean(summary), indent=2))
-    log(f"[{tag}] f over last cycle {summary['f_range_last_cycle']}, loop area {summary['hysteresis_loop_area']:.4g}, "
+        _write_outputs(cfg, summary, results, results["res"], c_grid, f_grid, plot, "plot_sine")
+    _say(cfg, f"[{tag}] f over last cycle {summary['f_range_last_cycle']}, loop area {summary['hysteresis_loop_area']:.4g}, "
         f"CV(RMSE) vs steady {summary['cv_rmse_vs_steady_percent']:.2f} %")
     return _json_clean(summary), results
