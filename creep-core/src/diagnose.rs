@@ -172,6 +172,8 @@ fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
     Dataset {
         source: data.source.clone(),
         extra_names: data.extra_names.clone(),
+        columns: data.columns.clone(),
+        delimiter: data.delimiter,
         rows: data
             .rows
             .iter()

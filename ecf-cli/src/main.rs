@@ -136,19 +136,49 @@ struct DataArgs {
     /// Worker threads
     #[arg(long, default_value_t = 2)]
     threads: usize,
+    /// Speed of every row, m/s, for a data file without a speed column (no silent default)
+    #[arg(long)]
+    v_mps: Option<f64>,
+    /// Normal force of every row, kN, for a data file without a load column (no silent default)
+    #[arg(long = "fn-kN", visible_alias = "fn-kn")]
+    fn_kn: Option<f64>,
+    /// Unit of creepage columns whose header gives none: 1 (dimensionless, 0.01 = 1 %) or percent
+    #[arg(long)]
+    cx_unit: Option<String>,
+    /// Do not print the column mapping of the data file on stderr
+    #[arg(long)]
+    quiet: bool,
 }
 
 impl DataArgs {
     /// The configuration and the measurement file, read once.
     fn load(&self) -> Result<(Config, Data), CreepError> {
-        Ok((self.config_only()?, measure_cmd::read_data(&self.data)?))
+        let cfg = self.config_only()?;
+        let mut defaults = creep_core::measure::Defaults::default();
+        if let Some(v) = self.v_mps {
+            defaults.v_mps = Some(creep_core::error::check_range(
+                "--v-mps", v, 0.0, 200.0, "m/s",
+            )?);
+        }
+        if let Some(f) = self.fn_kn {
+            defaults.fn_kn = Some(creep_core::error::check_range(
+                "--fn-kN", f, 1e-6, 5000.0, "kN",
+            )?);
+        }
+        if let Some(u) = &self.cx_unit {
+            defaults.cx_unit = Some(creep_core::measure::CreepageUnit::parse(u)?);
+        }
+        Ok((
+            cfg,
+            measure_cmd::read_data(&self.data, &defaults, self.quiet)?,
+        ))
     }
 
     /// Like `load`, for commands that need creep measurements (not HPT curves).
     fn load_rows(&self) -> Result<(Config, creep_core::measure::Dataset), CreepError> {
         match self.load()? {
             (cfg, Data::Rows(d)) => Ok((cfg, d)),
-            (_, Data::Hpt(_)) => Err(CreepError::Config {
+            (_, Data::Hpt(_)) => Err(CreepError::Data {
                 source_name: self.data.display().to_string(),
                 message: "a high-pressure-torsion file (p_MPa, u_mm, tau_MPa): use ecf compare or ecf fit".into(),
             }),

@@ -467,18 +467,25 @@ pub enum Data {
 }
 
 /// Reads a measurement file once; a header with `p_MPa`, `u_mm` and `tau_MPa` makes it a
-/// high-pressure-torsion file.
-pub fn read_data(path: &Path) -> Result<Data, CreepError> {
+/// high-pressure-torsion file. The column mapping is printed on stderr.
+pub fn read_data(
+    path: &Path,
+    defaults: &creep_core::measure::Defaults,
+    quiet: bool,
+) -> Result<Data, CreepError> {
+    use creep_core::measure::{detect_delimiter, utf8_text};
     let src = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| CreepError::Config {
+    let bytes = std::fs::read(path).map_err(|e| CreepError::Data {
         source_name: src.clone(),
         message: format!("cannot read: {e}"),
     })?;
+    let text = utf8_text(&bytes, &src)?;
+    let delim = detect_delimiter(&text) as char;
     let hpt = text
         .lines()
         .find(|l| !l.trim_start().starts_with('#'))
         .is_some_and(|h| {
-            let cols: Vec<&str> = h.split(',').map(|c| c.trim()).collect();
+            let cols: Vec<&str> = h.split(delim).map(|c| c.trim()).collect();
             ["p_MPa", "u_mm", "tau_MPa"]
                 .iter()
                 .all(|c| cols.contains(c))
@@ -486,11 +493,11 @@ pub fn read_data(path: &Path) -> Result<Data, CreepError> {
     Ok(if hpt {
         Data::Hpt(creep_core::measure::read_hpt(&text, &src)?)
     } else {
-        Data::Rows(Dataset::from_csv_str(
-            &text,
-            &src,
-            &creep_core::measure::Defaults::default(),
-        )?)
+        let d = Dataset::from_csv_str(&text, &src, defaults)?;
+        if !quiet {
+            eprint!("{}", d.mapping_text());
+        }
+        Data::Rows(d)
     })
 }
 
