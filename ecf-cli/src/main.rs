@@ -111,7 +111,14 @@ enum Cmd {
         /// Parameters to fit, comma separated (names as in `ecf info`); default: the layer strengths and hardening scale (+ their temperature coefficients)
         #[arg(long)]
         free: Option<String>,
-        /// Where to write the fitted configuration JSON
+        /// Narrow a parameter's bounds for this fit, NAME=MIN:MAX (repeatable), e.g. tau_c2_0_GPa=0.2:2
+        #[arg(
+            long = "bound",
+            value_name = "NAME=MIN:MAX",
+            allow_hyphen_values = true
+        )]
+        bounds: Vec<String>,
+        /// Where to write the fitted configuration JSON (left untouched when the fit fails)
         #[arg(long)]
         out: PathBuf,
         /// Print the result as JSON
@@ -615,13 +622,33 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             measure_cmd::report(&cfg, &first_name, second.as_ref(), &data, d.threads, &out)?;
             writeln!(w, "{}", out.display()).map_err(io)?;
         }
-        Cmd::Fit { d, free, out, json } => match d.load()? {
-            (cfg, Data::Hpt(rows)) => {
-                measure_cmd::fit_hpt(&cfg, &d.data, &rows, free.as_deref(), &out, json, &mut w)?
-            }
-            (cfg, Data::Rows(data)) => {
-                measure_cmd::fit(&cfg, &data, d.threads, free.as_deref(), &out, json, &mut w)?
-            }
+        Cmd::Fit {
+            d,
+            free,
+            bounds,
+            out,
+            json,
+        } => match d.load()? {
+            (cfg, Data::Hpt(rows)) => measure_cmd::fit_hpt(
+                &cfg,
+                &d.data,
+                &rows,
+                free.as_deref(),
+                &bounds,
+                &out,
+                json,
+                &mut w,
+            )?,
+            (cfg, Data::Rows(data)) => measure_cmd::fit(
+                &cfg,
+                &data,
+                d.threads,
+                free.as_deref(),
+                &bounds,
+                &out,
+                json,
+                &mut w,
+            )?,
         },
         Cmd::Info => {
             writeln!(

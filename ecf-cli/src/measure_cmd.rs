@@ -26,6 +26,16 @@ pub fn compare(
 ) -> Result<(), CreepError> {
     let pred = predict(cfg, data, threads)?;
     let c = cmp(data, &pred);
+    if !c.cv_rmse_pct.is_finite() {
+        let mean = data.rows.iter().map(|r| r.f).sum::<f64>() / data.rows.len() as f64;
+        return Err(CreepError::Data {
+            source_name: data.source.clone(),
+            message: format!(
+                "CV(RMSE) is not finite ({}): the mean measured traction coefficient is {mean} and CV(RMSE) divides by it (Eq. 2.9)",
+                c.cv_rmse_pct
+            ),
+        });
+    }
     if let Some(dir) = plots {
         write_plots(cfg, data, &pred, dir)?;
     }
@@ -228,16 +238,41 @@ fn sanitize(s: &str) -> String {
         .collect()
 }
 
+/// The configuration with `--bound NAME=MIN:MAX` applied.
+pub fn with_bounds(cfg: &Config, bounds: &[String]) -> Result<Config, CreepError> {
+    let mut c = cfg.clone();
+    for b in bounds {
+        let bad = || CreepError::Config {
+            source_name: "--bound".into(),
+            message: format!("'{b}': expected NAME=MIN:MAX, e.g. tau_c2_0_GPa=0.2:2"),
+        };
+        let (n, r) = b.split_once('=').ok_or_else(bad)?;
+        let (lo, hi) = r.split_once(':').ok_or_else(bad)?;
+        let num = |t: &str| -> Result<f64, CreepError> {
+            match t.trim() {
+                "inf" => Ok(f64::INFINITY),
+                "-inf" => Ok(f64::NEG_INFINITY),
+                t => t.parse().map_err(|_| bad()),
+            }
+        };
+        let id = FreeParam::resolve(&c, n.trim())?;
+        id.set_bounds(&mut c, num(lo)?, num(hi)?)?;
+    }
+    Ok(c)
+}
+
 /// Fits, writes the fitted configuration atomically and reports.
 pub fn fit(
     cfg: &Config,
     data: &Dataset,
     threads: usize,
     free: Option<&str>,
+    bounds: &[String],
     out: &Path,
     json: bool,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
+    let cfg = &with_bounds(cfg, bounds)?;
     let free: Vec<FreeParam> = match free {
         Some(list) => list
             .split(',')
@@ -601,15 +636,18 @@ pub fn compare_hpt(
 }
 
 /// Fits the layer parameters to high-pressure-torsion curves (written atomically).
+#[allow(clippy::too_many_arguments)]
 pub fn fit_hpt(
     cfg: &Config,
     path: &Path,
     rows: &[creep_core::measure::HptRow],
     free: Option<&str>,
+    bounds: &[String],
     out: &Path,
     json: bool,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
+    let cfg = &with_bounds(cfg, bounds)?;
     let free: Vec<FreeParam> = match free {
         Some(list) => list
             .split(',')
@@ -643,11 +681,23 @@ fn report_fit(
         source_name: out.display().to_string(),
         message: format!("cannot write: {e}"),
     })?;
+    for m in &r.warnings {
+        eprintln!("warning: {m}");
+    }
     if json {
+        let num = |x: f64| {
+            if x.is_finite() {
+                serde_json::json!(x)
+            } else if x.is_infinite() {
+                serde_json::json!("inf")
+            } else {
+                serde_json::Value::Null
+            }
+        };
         let map = |k: usize| -> serde_json::Map<String, serde_json::Value> {
             r.params
                 .iter()
-                .map(|p| (p.0.clone(), serde_json::json!([p.1, p.2, p.3][k])))
+                .map(|p| (p.0.clone(), num([p.1, p.2, p.3][k])))
                 .collect()
         };
         let v = serde_json::json!({
@@ -656,8 +706,10 @@ fn report_fit(
             "params": map(1),
             "stderr": map(2),
             "start": map(0),
+            "status": r.params.iter().zip(&r.status).map(|(p, s)| (p.0.clone(), serde_json::json!(s))).collect::<serde_json::Map<_, _>>(),
             "free": r.params.iter().map(|p| p.0.clone()).collect::<Vec<_>>(),
-            "correlation": r.correlation,
+            "correlation": r.correlation.iter().map(|row| row.iter().map(|x| num(*x)).collect::<Vec<_>>()).collect::<Vec<_>>(),
+            "warnings": r.warnings,
             "evaluations": r.evaluations,
             "termination": r.termination,
             "out": out.display().to_string(),
@@ -671,22 +723,37 @@ fn report_fit(
         r.cv_rmse_pct_before, r.cv_rmse_pct_after, r.evaluations, r.termination
     )
     .map_err(io)?;
-    for (n, s, v, se) in &r.params {
-        let sp = params::by_name(n).map(params::spec);
-        let unit = sp.map(|s| s.unit).unwrap_or("-");
-        let at_bound = sp
-            .map(|sp| *v <= sp.min * (1.0 + 1e-6) || *v >= sp.max * (1.0 - 1e-6))
-            .unwrap_or(false);
-        let note = if at_bound || !se.is_finite() {
-            "  (at a bound or not identifiable from these data)"
-        } else {
-            ""
+    for ((n, s, v, se), st) in r.params.iter().zip(&r.status) {
+        let unit = params::by_name(n)
+            .map(|p| params::spec(p).unit)
+            .unwrap_or("-");
+        let unc = match st {
+            creep_core::fit::ParamStatus::Determined => format!("± {se:.2e}"),
+            creep_core::fit::ParamStatus::NotIdentifiable => "± inf".to_string(),
+            _ => "± -".to_string(),
         };
-        writeln!(
-            w,
-            "  {n:<22} {s:>12.6} -> {v:>12.6} ± {se:.2e} {unit}{note}"
-        )
-        .map_err(io)?;
+        let note = if st.note().is_empty() {
+            String::new()
+        } else {
+            format!("  ({})", st.note())
+        };
+        writeln!(w, "  {n:<22} {s:>12.6} -> {v:>12.6} {unc} {unit}{note}").map_err(io)?;
+    }
+    let det: Vec<usize> = (0..r.params.len())
+        .filter(|&k| r.status[k] == creep_core::fit::ParamStatus::Determined)
+        .collect();
+    for (a, &i) in det.iter().enumerate() {
+        for &j in &det[a + 1..] {
+            let c = r.correlation[i][j];
+            if c.abs() > 0.95 {
+                writeln!(
+                    w,
+                    "  correlation {} / {} = {c:+.3}: the data hardly separate them",
+                    r.params[i].0, r.params[j].0
+                )
+                .map_err(io)?;
+            }
+        }
     }
     writeln!(w, "fitted configuration written to {}", out.display()).map_err(io)?;
     Ok(())
