@@ -84,12 +84,15 @@ pub fn compare(
     Ok(())
 }
 
+/// Writes the PNGs; returns (file, caption in words) in report order: measured against model
+/// per series first, then the residual plots.
 fn write_plots(
     cfg: &Config,
     data: &Dataset,
     pred: &[Prediction],
     dir: &Path,
-) -> Result<(), CreepError> {
+) -> Result<Vec<(std::path::PathBuf, String)>, CreepError> {
+    let mut written = Vec::new();
     std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
         source_name: dir.display().to_string(),
         message: format!("cannot create: {e}"),
@@ -156,14 +159,17 @@ fn write_plots(
                 color: 1,
             },
         ];
-        xy_plot(
-            &dir.join(format!("series_{k:02}_{}.png", sanitize(s))),
-            &title,
-            xlabel,
-            "traction coefficient f (-)",
-            &sets,
-        )
-        .map_err(err)?;
+        let file = dir.join(format!("series_{k:02}_{}.png", sanitize(s)));
+        xy_plot(&file, &title, xlabel, "traction coefficient f (-)", &sets).map_err(err)?;
+        written.push((
+            file,
+            format!(
+                "Measured traction coefficient (points) and model (line) of series '{s}' at {} m/s and {} kN, over {}.",
+                r0.v,
+                r0.fn_n / 1e3,
+                if r0.t.is_some() { "time" } else { "creepage" }
+            ),
+        ));
     }
     let res: Vec<f64> = data.rows.iter().zip(pred).map(|(r, p)| p.f - r.f).collect();
     let mut vars: Vec<(String, String, Vec<f64>)> = vec![
@@ -214,16 +220,32 @@ fn write_plots(
             })
             .filter(|s| !s.xy.is_empty())
             .collect();
+        let file = dir.join(format!("residual_over_{}.png", sanitize(&name)));
         xy_plot(
-            &dir.join(format!("residual_over_{}.png", sanitize(&name))),
+            &file,
             &format!("residual f_model - f_measured over {name}"),
             &label,
             "residual (-)",
             &sets,
         )
         .map_err(err)?;
+        written.push((
+            file,
+            format!(
+                "Residual (model minus measured traction coefficient) over {label}, coloured by creepage regime (R1 steep rise, R2 moderate rise, R3 falling branch)."
+            ),
+        ));
     }
-    Ok(())
+    Ok(written)
+}
+
+/// Removes a temporary folder when dropped (also when a report fails half-way).
+struct TempDir(std::path::PathBuf);
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
 }
 
 fn sanitize(s: &str) -> String {
@@ -333,6 +355,13 @@ pub fn diagnose(
     )
     .map_err(io)?;
     writeln!(w, "CV(RMSE) as given {:.2} %; held-out (folds by {}, {} folds) with its own parameters refitted {:.2} %", d.baseline_cv_rmse_pct, d.folds_by, d.folds, d.baseline_heldout_cv_rmse_pct).map_err(io)?;
+    if d.catalogue_all_on {
+        writeln!(
+            w,
+            "\nevery catalogue effect is already in the configuration: nothing in the catalogue to add"
+        )
+        .map_err(io)?;
+    }
     writeln!(
         w,
         "\nresidual correlations (model - measured), strongest first:"
@@ -341,7 +370,9 @@ pub fn diagnose(
     for c in &d.correlations {
         writeln!(w, "  {:<22} r = {:+.2}", c.variable, c.r).map_err(io)?;
     }
-    writeln!(w, "\ncandidate effects, best held-out error first:").map_err(io)?;
+    if !d.candidates.is_empty() {
+        writeln!(w, "\ncandidate effects, best held-out error first:").map_err(io)?;
+    }
     for c in &d.candidates {
         writeln!(
             w,
@@ -372,7 +403,7 @@ fn report_column(
     use base64::Engine;
     let pred = predict(cfg, data, threads)?;
     let c = cmp(data, &pred);
-    write_plots(cfg, data, &pred, tmp)?;
+    let figures = write_plots(cfg, data, &pred, tmp)?;
     let mut h = format!(
         "<h2>{}</h2><p>model <b>{}</b>, effects {}</p>",
         esc(name),
@@ -380,9 +411,9 @@ fn report_column(
         esc(&format!("{:?}", cfg.effects.to_vec()))
     );
     h += &format!("<p class=big>CV(RMSE) = <b>{:.2} %</b> overall, {:.2} % for c<sub>x</sub> &ge; 1 % (seed Eq. 2.9)</p>", c.cv_rmse_pct, c.cv_rmse_pct_cx_ge_1pct);
-    h += "<table><tr><th>group</th><th>value</th><th>n</th><th>CV(RMSE) %</th><th>mean residual</th></tr>";
+    let mut table = String::from("<table><tr><th>group</th><th>value</th><th>n</th><th>CV(RMSE) %</th><th>mean residual</th></tr>");
     for g in &c.groups {
-        h += &format!(
+        table += &format!(
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{:+.4}</td></tr>",
             esc(&g.by),
             esc(&g.value),
@@ -391,23 +422,24 @@ fn report_column(
             g.mean_residual
         );
     }
-    h += "</table>";
-    let mut pngs: Vec<_> = std::fs::read_dir(tmp)
-        .map_err(|e| CreepError::Config {
-            source_name: tmp.display().to_string(),
-            message: e.to_string(),
-        })?
-        .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .collect();
-    pngs.sort();
-    for p in pngs {
-        let bytes = std::fs::read(&p).map_err(|e| CreepError::Config {
+    table += "</table>";
+    let n_series = data.series().len();
+    for (k, (p, caption)) in figures.iter().enumerate() {
+        if k == n_series {
+            h += "<h3>Residuals</h3>";
+        }
+        let bytes = std::fs::read(p).map_err(|e| CreepError::Config {
             source_name: p.display().to_string(),
             message: e.to_string(),
         })?;
         let b64 = base64::engine::general_purpose::STANDARD.encode(bytes);
-        h += &format!("<figure><img alt=\"{}\" src=\"data:image/png;base64,{b64}\"><figcaption>{}</figcaption></figure>", esc(&p.display().to_string()), esc(&p.file_name().map(|f| f.to_string_lossy().to_string()).unwrap_or_default()));
+        h += &format!(
+            "<figure><img alt=\"{c}\" src=\"data:image/png;base64,{b64}\"><figcaption>{c}</figcaption></figure>",
+            c = esc(caption)
+        );
+        if k + 1 == n_series {
+            h += &table;
+        }
     }
     Ok((h, c.cv_rmse_pct))
 }
@@ -421,7 +453,8 @@ pub fn report(
     threads: usize,
     out: &Path,
 ) -> Result<(), CreepError> {
-    let tmp = std::env::temp_dir().join(format!("ecf-report-{}", std::process::id()));
+    let guard = TempDir(std::env::temp_dir().join(format!("ecf-report-{}", std::process::id())));
+    let tmp = guard.0.clone();
     let _ = std::fs::remove_dir_all(&tmp);
     let (col1, cv1) = report_column(
         cfg,
@@ -440,8 +473,8 @@ pub fn report(
         )?),
         None => None,
     };
+    drop(guard);
     let d = creep_core::diagnose::diagnose(cfg, data, threads, &|_| {})?;
-    let _ = std::fs::remove_dir_all(&tmp);
     let mut diag = format!(
         "<h2>Diagnosis of the first configuration</h2><p><b>{}</b></p>",
         esc(&d.verdict)
