@@ -245,6 +245,7 @@ fn param_value(src: &str, name: &str, v: &Value) -> Result<f64> {
     match v {
         Value::Number(n) => n.as_f64().ok_or_else(|| cfg_err(src, format!("params.{name}: not a finite number"))),
         Value::String(s) if s == "inf" || s == "Infinity" => Ok(f64::INFINITY),
+        Value::String(s) if s == "-inf" => Ok(f64::NEG_INFINITY),
         _ => Err(cfg_err(src, format!("params.{name}: expected a number (in the unit the name carries) or \"inf\", got {v}"))),
     }
 }
@@ -339,7 +340,7 @@ impl Config {
         })?;
         let mut cfg = match &raw.preset {
             Some(p) => {
-                let base = Self::preset(p)?;
+                let base = Self::preset(p).map_err(|e| cfg_err(src, format!("preset: {e}")))?;
                 Config {
                     preset: p.clone(),
                     ..base
@@ -353,7 +354,7 @@ impl Config {
                     )
                 })?;
                 Config {
-                    model: ModelKind::parse(model)?,
+                    model: ModelKind::parse(model).map_err(|e| cfg_err(src, e.to_string()))?,
                     preset: "custom".into(),
                     effects: EffectSet::empty(),
                     params: Params::default(),
@@ -366,7 +367,7 @@ impl Config {
             }
         };
         if let Some(m) = &raw.model {
-            let kind = ModelKind::parse(m)?;
+            let kind = ModelKind::parse(m).map_err(|e| cfg_err(src, e.to_string()))?;
             if raw.preset.is_some() && kind != cfg.model {
                 return Err(cfg_err(
                     src,
@@ -380,30 +381,90 @@ impl Config {
             cfg.model = kind;
         }
         if let Some(list) = &raw.effects {
-            let relative = !list.is_empty()
-                && list
-                    .iter()
-                    .all(|e| e.starts_with('+') || e.starts_with('-'));
+            let signed = |e: &String| e.starts_with('+') || e.starts_with('-');
+            let relative = !list.is_empty() && list.iter().all(signed);
+            if list.iter().any(signed) && !relative {
+                return Err(cfg_err(
+                    src,
+                    format!(
+                        "effects {list:?} mixes names with and without +/-: write either a full list (replaces the preset's) or only +NAME/-NAME changes"
+                    ),
+                ));
+            }
             if !relative {
                 cfg.effects = EffectSet::empty();
             }
+            let by_name =
+                |n: &str| effects::by_name(n).map_err(|e| cfg_err(src, format!("effects: {e}")));
             for e in list {
                 if let Some(n) = e.strip_prefix('-') {
-                    if relative {
-                        cfg.effects.remove(effects::by_name(n)?);
-                        continue;
-                    }
+                    cfg.effects.remove(by_name(n)?);
+                    continue;
                 }
                 let n = e.strip_prefix('+').unwrap_or(e);
-                cfg.effects.insert(effects::by_name(n)?);
+                cfg.effects.insert(by_name(n)?);
             }
         }
         if let Some(ps) = &raw.params {
             for (name, v) in ps {
-                let x = param_value(src, name, v)?;
-                cfg.params
-                    .set_by_name(name, x)
-                    .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
+                let id = params::by_name(name).ok_or_else(|| {
+                    cfg_err(
+                        src,
+                        format!(
+                            "params.{name}: unknown parameter; accepted: {}",
+                            Config::param_names().join(", ")
+                        ),
+                    )
+                })?;
+                let (x, bounds) = match v {
+                    Value::Object(m) => {
+                        for k in m.keys() {
+                            if !["value", "min", "max"].contains(&k.as_str()) {
+                                return Err(cfg_err(
+                                    src,
+                                    format!(
+                                        "params.{name}.{k}: unknown key; accepted: value, min, max"
+                                    ),
+                                ));
+                            }
+                        }
+                        let x = m
+                            .get("value")
+                            .map(|v| param_value(src, &format!("{name}.value"), v))
+                            .transpose()?
+                            .unwrap_or(cfg.params.get(id));
+                        let (rlo, rhi) = cfg.params.bounds(id);
+                        let lo = m
+                            .get("min")
+                            .map(|v| param_value(src, &format!("{name}.min"), v))
+                            .transpose()?
+                            .unwrap_or(rlo);
+                        let hi = m
+                            .get("max")
+                            .map(|v| param_value(src, &format!("{name}.max"), v))
+                            .transpose()?
+                            .unwrap_or(rhi);
+                        (x, Some((lo, hi)))
+                    }
+                    _ => (param_value(src, name, v)?, None),
+                };
+                if let Some((lo, hi)) = bounds {
+                    // widen first so that a value outside the old bounds can be set
+                    let s = params::spec(id);
+                    cfg.params
+                        .set_bounds(id, s.min, s.max)
+                        .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
+                    cfg.params
+                        .set(id, x)
+                        .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
+                    cfg.params
+                        .set_bounds(id, lo, hi)
+                        .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
+                } else {
+                    cfg.params
+                        .set(id, x)
+                        .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
+                }
             }
         }
         if let Some(b) = &raw.bound {
@@ -502,13 +563,22 @@ impl Config {
     /// The configuration as a JSON document that [`Config::from_json_str`] reads back.
     pub fn to_json(&self) -> Value {
         let mut ps = Map::new();
-        for (name, v) in self.params.iter() {
-            let val = if v.is_infinite() {
-                Value::String("inf".into())
+        let num = |v: f64| {
+            if v.is_infinite() {
+                Value::String(if v > 0.0 { "inf" } else { "-inf" }.into())
             } else {
                 serde_json::json!(v)
+            }
+        };
+        for s in params::SPECS {
+            let v = self.params.get(s.id);
+            let val = if self.params.narrowed(s.id) {
+                let (lo, hi) = self.params.bounds(s.id);
+                serde_json::json!({"value": num(v), "min": num(lo), "max": num(hi)})
+            } else {
+                num(v)
             };
-            ps.insert(name.into(), val);
+            ps.insert(s.name.into(), val);
         }
         let geometry = match self.geometry {
             Geometry::SemiAxes { a, b, fn_ref } => {

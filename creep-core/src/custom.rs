@@ -120,6 +120,8 @@ pub struct CustomUse {
     pub effect: &'static dyn CustomEffect,
     /// Parameter values, in the order of [`CustomEffect::params`].
     pub params: Vec<f64>,
+    /// Bounds a fit keeps them in (the effect's, or narrower ones the user gave).
+    pub bounds: Vec<(f64, f64)>,
 }
 
 impl PartialEq for CustomUse {
@@ -146,6 +148,7 @@ impl CustomUse {
         Ok(CustomUse {
             effect: *e,
             params: e.params().iter().map(|p| p.1).collect(),
+            bounds: e.params().iter().map(|p| (p.2, p.3)).collect(),
         })
     }
 

@@ -71,6 +71,8 @@ pub struct Diagnosis {
     pub missing_effect: Option<String>,
     /// One-paragraph verdict in words.
     pub verdict: String,
+    /// True when every catalogue effect is already in the configuration.
+    pub catalogue_all_on: bool,
 }
 
 fn pearson(x: &[f64], y: &[f64]) -> f64 {
@@ -172,6 +174,8 @@ fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
     Dataset {
         source: data.source.clone(),
         extra_names: data.extra_names.clone(),
+        columns: data.columns.clone(),
+        delimiter: data.delimiter,
         rows: data
             .rows
             .iter()
@@ -277,8 +281,13 @@ pub fn diagnose(
         .collect();
     let base_heldout = heldout(cfg, data, &labels, &base_free, threads)?;
     let mut candidates = Vec::new();
+    let mut catalogue_tried = 0;
+    let mut catalogue_all_on = false;
     if cfg.model != ModelKind::Polach && !cfg.has(Effect::Coulomb) {
         let has_series = data.rows.iter().any(|r| r.t.is_some());
+        catalogue_all_on = effects::CATALOGUE
+            .iter()
+            .all(|i| i.effect == Effect::Coulomb || cfg.has(i.effect));
         for info in effects::CATALOGUE {
             let e = info.effect;
             if cfg.has(e) || e == Effect::Coulomb {
@@ -288,6 +297,7 @@ pub fn diagnose(
                 continue; // no time series: these effects cannot show in steady data
             }
             progress(info.name);
+            catalogue_tried += 1;
             let mut c = cfg.clone();
             c.effects.insert(e);
             let mut free = base_free.clone();
@@ -320,6 +330,50 @@ pub fn diagnose(
                 free: free.iter().map(|p| p.name(&c)).collect(),
                 explanation: format!(
                     "{first_sentence}. Evidence: {evidence}; adding it and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %."
+                ),
+            });
+        }
+    }
+    // registered Rust effects the configuration lacks, whose data columns the file has
+    let mut untried: Vec<String> = Vec::new();
+    if cfg.model != ModelKind::Polach {
+        for eff in crate::custom::CATALOGUE {
+            if cfg.custom.iter().any(|u| u.effect.name() == eff.name()) {
+                continue;
+            }
+            if let Some(c) = eff
+                .columns()
+                .iter()
+                .find(|c| !data.extra_names.iter().any(|n| n == *c))
+            {
+                untried.push(format!("{} (needs the column '{c}')", eff.name()));
+                continue;
+            }
+            progress(eff.name());
+            let mut c = cfg.clone();
+            c.custom
+                .push(crate::custom::CustomUse::by_name(eff.name())?);
+            let mut free = base_free.clone();
+            let e = c.custom.len() - 1;
+            for (k, p) in eff.params().iter().enumerate() {
+                // parameters whose bounds are a reference value (lower bound > 0) stay fixed
+                if p.2 <= 0.0 {
+                    free.push(FreeParam::Custom {
+                        effect: e,
+                        param: k,
+                    });
+                }
+            }
+            let h = heldout(&c, data, &labels, &free, threads)?;
+            let fitted = fit_params(&c, data, &free, threads, &|_| {})?;
+            candidates.push(Candidate {
+                effect: format!("Rust effect {}", eff.name()),
+                heldout_cv_rmse_pct: h,
+                fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
+                free: free.iter().map(|p| p.name(&c)).collect(),
+                explanation: format!(
+                    "{}. Adding this registered Rust effect and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %.",
+                    first_sentence(eff.description())
                 ),
             });
         }
@@ -379,18 +433,47 @@ pub fn diagnose(
         .first()
         .filter(|c| c.heldout_cv_rmse_pct < (1.0 - CLAIM_FRACTION) * base_heldout)
         .map(|c| c.effect.clone());
+    let _ = catalogue_tried;
+    // the strongest correlation with something the user can act on: a data column or an
+    // operating variable, not a model output
+    let strongest_extra = corr.iter().find(|c| data.extra_names.contains(&c.variable));
+    let mut preface = String::new();
+    if catalogue_all_on {
+        preface += "Every catalogue effect is already in the configuration; ";
+        preface += if candidates.is_empty() {
+            "there is nothing to try, so the residual correlations are the evidence. "
+        } else {
+            "only the candidates below were tried. "
+        };
+    }
+    if !untried.is_empty() {
+        preface += &format!("Not tried: {}. ", untried.join(", "));
+    }
+    let hint = match strongest_extra {
+        Some(c) if c.r.abs() >= STRONG => format!(
+            " The data column '{}' follows the residuals (r = {:+.2}): try a formula effect on it.",
+            c.variable, c.r
+        ),
+        _ => String::new(),
+    };
     let verdict = match &missing {
         Some(m) => format!(
             "Missing effect: {m}. With it the held-out CV(RMSE) falls from {base_heldout:.2} % to {:.2} %; the strongest residual correlation of the configuration as given is with {} (r = {:+.2}).",
             candidates[0].heldout_cv_rmse_pct, corr[0].variable, corr[0].r
         ),
+        None if candidates.is_empty() => format!(
+            "No candidate to try. Strongest residual correlation: {} (r = {:+.2}).{hint}",
+            corr.first().map(|c| c.variable.as_str()).unwrap_or("-"),
+            corr.first().map(|c| c.r).unwrap_or(0.0)
+        ),
         None => format!(
-            "No missing effect claimed: no catalogue effect lowers the held-out CV(RMSE) ({base_heldout:.2} %) by {:.0} % or more. Strongest residual correlation: {} (r = {:+.2}); if it is an extra column, try a formula effect on it.",
+            "No missing effect claimed: no candidate lowers the held-out CV(RMSE) ({base_heldout:.2} %) by {:.0} % or more. Strongest residual correlation: {} (r = {:+.2}).{hint}",
             CLAIM_FRACTION * 100.0,
             corr.first().map(|c| c.variable.as_str()).unwrap_or("-"),
             corr.first().map(|c| c.r).unwrap_or(0.0)
         ),
     };
+    let verdict = format!("{preface}{verdict}");
     Ok(Diagnosis {
         baseline_cv_rmse_pct: baseline_cv,
         baseline_heldout_cv_rmse_pct: base_heldout,
@@ -400,5 +483,6 @@ pub fn diagnose(
         correlations: corr,
         missing_effect: missing,
         verdict,
+        catalogue_all_on,
     })
 }

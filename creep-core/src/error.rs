@@ -33,6 +33,17 @@ pub enum CreepError {
         /// What is wrong, with line and column where known.
         message: String,
     },
+    /// A measurement (data) file is malformed or cannot be read.
+    #[error("data file {source_name}: {message}")]
+    Data {
+        /// File name.
+        source_name: String,
+        /// What is wrong, with line and column where known.
+        message: String,
+    },
+    /// A fit failed: its result must not be used.
+    #[error("fit failed: {0}")]
+    Fit(String),
     /// A saved state could not be restored.
     #[error("state: {0}")]
     State(String),

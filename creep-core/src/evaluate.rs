@@ -1,8 +1,8 @@
 //! Runs a configuration over a measurement file and compares: per-row predictions, CV(RMSE) overall, per group and per creepage regime.
 
 use crate::config::{Config, Geometry};
-use crate::error::Result;
-use crate::measure::{cv_rmse_pct, Dataset, Row};
+use crate::error::{CreepError, Result};
+use crate::measure::{Dataset, Row};
 use crate::model::Model;
 use std::collections::BTreeMap;
 
@@ -121,17 +121,204 @@ fn run_job(
     Ok(())
 }
 
-/// Predictions for every row (in row order), computed on `threads` threads.
+/// Checks that every data column a formula or Rust effect uses is in the data file.
+pub fn check_columns(cfg: &Config, data: &Dataset) -> Result<()> {
+    let have = || {
+        if data.extra_names.is_empty() {
+            "none".to_string()
+        } else {
+            data.extra_names.join(", ")
+        }
+    };
+    for f in &cfg.formulas {
+        for c in &f.columns {
+            if !data.extra_names.contains(c) {
+                return Err(CreepError::Data {
+                    source_name: data.source.clone(),
+                    message: format!(
+                        "formula effect '{}' (factor '{}') uses the column '{c}', which this data file does not have (extra columns: {})",
+                        f.name,
+                        crate::measure::cut(&f.source),
+                        have()
+                    ),
+                });
+            }
+        }
+    }
+    for u in &cfg.custom {
+        for c in u.effect.columns() {
+            if !data.extra_names.iter().any(|n| n == c) {
+                return Err(CreepError::Data {
+                    source_name: data.source.clone(),
+                    message: format!(
+                        "Rust effect '{}' needs the column '{c}', which this data file does not have (extra columns: {})",
+                        u.effect.name(),
+                        have()
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Factors of the formula and Rust effects at a row's operating point (local ones with the
+/// bristle at rest at p = 0 and 1 GPa, bulk temperature, u = 0): (effect, value) of the first
+/// factor that is not finite or negative. Factors scale strengths (tau_c1, tau_c2, mu) and
+/// compliances (L_e, L_p), so they must be finite and >= 0.
+fn bad_factor(cfg: &Config, data: &Dataset, r: &Row) -> Option<(String, f64)> {
+    let slip = r.cx.hypot(r.cy) * r.v;
+    for f in &cfg.formulas {
+        let mut vars = vec![
+            0.0,
+            r.t_bulk,
+            0.0,
+            slip,
+            r.v,
+            r.fn_n / 1e3,
+            r.cx,
+            r.cy,
+            r.spin,
+        ];
+        for c in &f.columns {
+            let k = data.extra_names.iter().position(|n| n == c)?;
+            vars.push(r.extra[k]);
+        }
+        let probes: &[f64] = if f.local { &[0.0, 1.0] } else { &[0.0] };
+        for &p in probes {
+            vars[0] = p;
+            let x = f.eval(&vars);
+            if !(x.is_finite() && x >= 0.0) {
+                return Some((
+                    format!(
+                        "formula effect '{}' (factor '{}')",
+                        f.name,
+                        crate::measure::cut(&f.source)
+                    ),
+                    x,
+                ));
+            }
+        }
+    }
+    if !cfg.custom.is_empty() {
+        let cols: Vec<(String, f64)> = data
+            .extra_names
+            .iter()
+            .cloned()
+            .zip(r.extra.iter().copied())
+            .collect();
+        let op = crate::custom::OperatingPoint {
+            v_mps: r.v,
+            fn_kn: r.fn_n / 1e3,
+            cx: r.cx,
+            cy: r.cy,
+            spin_per_m: r.spin,
+            columns: &cols,
+        };
+        for u in &cfg.custom {
+            let probes: &[f64] = if u.effect.uses_local_state() {
+                &[0.0, 1.0]
+            } else {
+                &[0.0]
+            };
+            for &p in probes {
+                let local = crate::custom::LocalState {
+                    p_gpa: p,
+                    t_c: r.t_bulk,
+                    u_mm: 0.0,
+                    slip_mps: slip,
+                };
+                let x = u.effect.factor(&u.params, &local, &op);
+                if !(x.is_finite() && x >= 0.0) {
+                    return Some((format!("Rust effect '{}'", u.effect.name()), x));
+                }
+            }
+        }
+    }
+    None
+}
+
+fn lines_text(lines: &[usize]) -> String {
+    let shown: Vec<String> = lines.iter().take(8).map(|l| l.to_string()).collect();
+    if lines.len() > 8 {
+        format!("{} and {} more", shown.join(", "), lines.len() - 8)
+    } else {
+        shown.join(", ")
+    }
+}
+
+/// Key of a steady row's operating point: rows with equal keys have equal predictions.
+fn point_key(cfg: &Config, data: &Dataset, cols: &[usize], r: &Row) -> Vec<u64> {
+    let (a, b) = r.ab.unwrap_or((f64::NAN, f64::NAN));
+    let mut k = vec![
+        r.cx.to_bits(),
+        r.cy.to_bits(),
+        r.spin.to_bits(),
+        r.v.to_bits(),
+        r.fn_n.to_bits(),
+        r.t_bulk.to_bits(),
+        a.to_bits(),
+        b.to_bits(),
+    ];
+    if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
+        let _ = data;
+        k.extend(cols.iter().map(|&c| r.extra[c].to_bits()));
+    }
+    k
+}
+
+/// Predictions for every row (in row order), computed on `threads` threads. Steady rows that
+/// share an operating point (creepages, speed, load, temperature, semi-axes and the data
+/// columns the configuration's formula/Rust effects use) are evaluated once. Fails, naming
+/// the rows, when a formula or Rust effect's factor is not finite or negative, or when the
+/// model's traction coefficient is not finite.
 pub fn predict(cfg: &Config, data: &Dataset, threads: usize) -> Result<Vec<Prediction>> {
+    check_columns(cfg, data)?;
+    // extra columns that change the model: those the effects use
+    let used: Vec<usize> = (0..data.extra_names.len())
+        .filter(|&k| {
+            let n = &data.extra_names[k];
+            cfg.formulas.iter().any(|f| f.columns.contains(n)) || !cfg.custom.is_empty()
+        })
+        .collect();
     let mut jobs = Vec::new();
     let mut series: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
+    let mut unique: std::collections::HashMap<Vec<u64>, usize> = std::collections::HashMap::new();
+    let mut of_row = vec![usize::MAX; data.rows.len()];
+    let mut bad: BTreeMap<String, (Vec<usize>, f64)> = BTreeMap::new();
     for (i, r) in data.rows.iter().enumerate() {
         if r.t.is_some() {
             series.entry(r.series.as_str()).or_default().push(i);
-        } else {
-            jobs.push(Job::Steady(i));
+            if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
+                if let Some((e, x)) = bad_factor(cfg, data, r) {
+                    bad.entry(e).or_insert((Vec::new(), x)).0.push(r.line);
+                }
+            }
+            continue;
         }
+        let key = point_key(cfg, data, &used, r);
+        let n = unique.len();
+        let u = *unique.entry(key).or_insert(n);
+        if u == n {
+            jobs.push(Job::Steady(i));
+            if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
+                if let Some((e, x)) = bad_factor(cfg, data, r) {
+                    bad.entry(e).or_insert((Vec::new(), x)).0.push(r.line);
+                }
+            }
+        }
+        of_row[i] = u;
     }
+    if let Some((e, (lines, x))) = bad.into_iter().next() {
+        return Err(CreepError::Data {
+            source_name: data.source.clone(),
+            message: format!(
+                "{e} is {x} at line(s) {}: a factor scaling a strength or compliance must be finite and >= 0",
+                lines_text(&lines)
+            ),
+        });
+    }
+    drop(unique);
     for (_, mut idx) in series {
         idx.sort_by(|a, b| {
             data.rows[*a]
@@ -158,18 +345,66 @@ pub fn predict(cfg: &Config, data: &Dataset, threads: usize) -> Result<Vec<Predi
             })
             .collect();
         for h in handles {
-            results.push(h.join().unwrap_or_else(|_| {
-                Err(crate::error::CreepError::State(
-                    "a worker thread panicked".into(),
-                ))
-            }));
+            results.push(
+                h.join()
+                    .unwrap_or_else(|_| Err(CreepError::State("a worker thread panicked".into()))),
+            );
         }
     });
     let mut pred = vec![Prediction::default(); data.rows.len()];
+    let mut by_point: Vec<Prediction> = Vec::new();
+    let mut point_of_rep: std::collections::HashMap<usize, Prediction> =
+        std::collections::HashMap::new();
     for r in results {
         for (i, p) in r? {
-            pred[i] = p;
+            if data.rows[i].t.is_some() {
+                pred[i] = p;
+            } else {
+                point_of_rep.insert(of_row[i], p);
+            }
         }
+    }
+    if !point_of_rep.is_empty() {
+        by_point.resize(point_of_rep.len(), Prediction::default());
+        for (u, p) in point_of_rep {
+            by_point[u] = p;
+        }
+        for (i, r) in data.rows.iter().enumerate() {
+            if r.t.is_none() {
+                pred[i] = by_point[of_row[i]];
+            }
+        }
+    }
+    let nonfinite: Vec<usize> = data
+        .rows
+        .iter()
+        .zip(&pred)
+        .filter(|(_, p)| !p.f.is_finite())
+        .map(|(r, _)| r.line)
+        .collect();
+    if !nonfinite.is_empty() {
+        let mut who = format!(
+            "model {} with effects {:?}",
+            cfg.model.name(),
+            cfg.effects
+                .to_vec()
+                .iter()
+                .map(|e| crate::effects::info(*e).name)
+                .collect::<Vec<_>>()
+        );
+        for f in &cfg.formulas {
+            who += &format!(", formula effect '{}'", f.name);
+        }
+        for u in &cfg.custom {
+            who += &format!(", Rust effect '{}'", u.effect.name());
+        }
+        return Err(CreepError::Data {
+            source_name: data.source.clone(),
+            message: format!(
+                "the {who} gives a non-finite traction coefficient at line(s) {}",
+                lines_text(&nonfinite)
+            ),
+        });
     }
     Ok(pred)
 }
@@ -231,64 +466,102 @@ pub struct Comparison {
     pub groups: Vec<GroupStat>,
 }
 
-/// Compares predictions with the measurements.
-pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
-    let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
-    let model: Vec<f64> = pred.iter().map(|p| p.f).collect();
-    let subset = |keep: &dyn Fn(usize) -> bool| -> (Vec<f64>, Vec<f64>) {
-        let idx: Vec<usize> = (0..meas.len()).filter(|&i| keep(i)).collect();
-        (
-            idx.iter().map(|&i| meas[i]).collect(),
-            idx.iter().map(|&i| model[i]).collect(),
-        )
-    };
-    let stat = |by: &str, value: String, keep: &dyn Fn(usize) -> bool| {
-        let (a, b) = subset(keep);
-        let mean_residual = if a.is_empty() {
-            f64::NAN
-        } else {
-            a.iter().zip(&b).map(|(x, y)| y - x).sum::<f64>() / a.len() as f64
-        };
+#[derive(Default, Clone, Copy)]
+struct Acc {
+    n: usize,
+    sq: f64,
+    meas: f64,
+    res: f64,
+}
+
+impl Acc {
+    fn add(&mut self, meas: f64, model: f64) {
+        self.n += 1;
+        self.sq += (model - meas) * (model - meas);
+        self.meas += meas;
+        self.res += model - meas;
+    }
+    fn stat(&self, by: &str, value: String) -> GroupStat {
+        let n = self.n as f64;
         GroupStat {
             by: by.into(),
             value,
-            n: a.len(),
-            cv_rmse_pct: cv_rmse_pct(&a, &b),
-            mean_residual,
+            n: self.n,
+            cv_rmse_pct: if self.n == 0 {
+                f64::NAN
+            } else {
+                100.0 * (self.sq / n).sqrt() / (self.meas / n).abs()
+            },
+            mean_residual: if self.n == 0 { f64::NAN } else { self.res / n },
         }
-    };
+    }
+}
+
+/// Compares predictions with the measurements (one pass over the rows).
+pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
+    use std::collections::HashMap;
     let mut groups = Vec::new();
     let reg = regimes(data);
-    type Key = fn(&Row) -> String;
-    let keys: [(&str, Key); 4] = [
-        ("series", |r| r.series.clone()),
-        ("condition", |r| r.condition.clone()),
-        ("v_mps", |r| format!("{}", r.v)),
-        ("fn_kN", |r| format!("{}", r.fn_n / 1e3)),
-    ];
-    for (by, key) in keys {
-        let mut values: Vec<String> = Vec::new();
-        for r in &data.rows {
-            let k = key(r);
-            if !values.contains(&k) {
-                values.push(k);
-            }
+    // per key: first-appearance order of the values and their accumulators
+    let mut text_keys: [(Vec<String>, HashMap<&str, usize>, Vec<Acc>); 2] = Default::default();
+    let mut num_keys: [(Vec<f64>, HashMap<u64, usize>, Vec<Acc>); 2] = Default::default();
+    let mut regime = [Acc::default(); 3];
+    let (mut all, mut ge1) = (Acc::default(), Acc::default());
+    for (i, r) in data.rows.iter().enumerate() {
+        let (m, y) = (r.f, pred[i].f);
+        all.add(m, y);
+        if r.cx.abs() >= 0.01 {
+            ge1.add(m, y);
         }
-        for v in values {
-            groups.push(stat(by, v.clone(), &|i| key(&data.rows[i]) == v));
+        regime[match reg[i] {
+            "R1" => 0,
+            "R2" => 1,
+            _ => 2,
+        }]
+        .add(m, y);
+        for (k, v) in [r.series.as_str(), r.condition.as_str()]
+            .into_iter()
+            .enumerate()
+        {
+            let (names, idx, acc) = &mut text_keys[k];
+            let j = *idx.entry(v).or_insert_with(|| {
+                names.push(v.to_string());
+                acc.push(Acc::default());
+                names.len() - 1
+            });
+            acc[j].add(m, y);
+        }
+        for (k, v) in [r.v, r.fn_n / 1e3].into_iter().enumerate() {
+            let (vals, idx, acc) = &mut num_keys[k];
+            let j = *idx.entry(v.to_bits()).or_insert_with(|| {
+                vals.push(v);
+                acc.push(Acc::default());
+                vals.len() - 1
+            });
+            acc[j].add(m, y);
         }
     }
-    for rg in ["R1", "R2", "R3"] {
-        let g = stat("regime", rg.into(), &|i| reg[i] == rg);
-        if g.n > 0 {
-            groups.push(g);
+    for (k, by) in ["series", "condition"].into_iter().enumerate() {
+        let (names, _, acc) = &text_keys[k];
+        for (n, a) in names.iter().zip(acc) {
+            groups.push(a.stat(by, n.clone()));
         }
     }
-    let ge1 = stat("cx>=1%", "yes".into(), &|i| data.rows[i].cx.abs() >= 0.01);
+    for (k, by) in ["v_mps", "fn_kN"].into_iter().enumerate() {
+        let (vals, _, acc) = &num_keys[k];
+        for (v, a) in vals.iter().zip(acc) {
+            groups.push(a.stat(by, format!("{v}")));
+        }
+    }
+    for (k, rg) in ["R1", "R2", "R3"].into_iter().enumerate() {
+        if regime[k].n > 0 {
+            groups.push(regime[k].stat("regime", rg.into()));
+        }
+    }
     Comparison {
-        cv_rmse_pct: cv_rmse_pct(&meas, &model),
-        cv_rmse_pct_cx_ge_1pct: ge1.cv_rmse_pct,
-        n: meas.len(),
+        cv_rmse_pct: all.stat("all", String::new()).cv_rmse_pct,
+        cv_rmse_pct_cx_ge_1pct: ge1.stat("cx>=1%", "yes".into()).cv_rmse_pct,
+        n: data.rows.len(),
         groups,
     }
 }

@@ -12,6 +12,7 @@ use crate::error::{CreepError, Result};
 use crate::evaluate::predict;
 use crate::measure::{cv_rmse_pct, Dataset};
 use crate::params::{spec, P};
+
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
 
@@ -66,9 +67,22 @@ impl FreeParam {
             FreeParam::Custom { effect, param } => cfg.custom[effect].params[param],
         }
     }
-    /// Bounds (display unit).
+    /// Bounds (display unit): the registry's or the effect's, narrowed by the user.
     pub fn bounds(&self, cfg: &Config) -> (f64, f64) {
         match *self {
+            FreeParam::Builtin(p) => cfg.params.bounds(p),
+            FreeParam::Formula { effect, param } => {
+                let q = &cfg.formulas[effect].params[param];
+                (q.2, q.3)
+            }
+            FreeParam::Custom { effect, param } => cfg.custom[effect].bounds[param],
+        }
+    }
+    /// Narrows the bounds for a fit (`--bound NAME=MIN:MAX`): within the parameter's own
+    /// bounds, with the current value inside.
+    pub fn set_bounds(&self, cfg: &mut Config, lo: f64, hi: f64) -> Result<()> {
+        let name = self.name(cfg);
+        let (olo, ohi) = match *self {
             FreeParam::Builtin(p) => (spec(p).min, spec(p).max),
             FreeParam::Formula { effect, param } => {
                 let q = &cfg.formulas[effect].params[param];
@@ -78,6 +92,32 @@ impl FreeParam {
                 let q = cfg.custom[effect].effect.params()[param];
                 (q.2, q.3)
             }
+        };
+        let v = self.get(cfg);
+        if lo.is_nan() || hi.is_nan() || lo >= hi || lo < olo || hi > ohi || v < lo || v > hi {
+            return Err(CreepError::OutOfRange {
+                field: format!("--bound {name}"),
+                value: v,
+                expected: format!(
+                    "need min < max within [{olo}, {ohi}] and the current value inside [{lo}, {hi}]"
+                ),
+            });
+        }
+        match *self {
+            FreeParam::Builtin(p) => cfg.params.set_bounds(p, lo, hi)?,
+            FreeParam::Formula { effect, param } => {
+                let q = &mut cfg.formulas[effect].params[param];
+                (q.2, q.3) = (lo, hi);
+            }
+            FreeParam::Custom { effect, param } => cfg.custom[effect].bounds[param] = (lo, hi),
+        }
+        Ok(())
+    }
+    /// Plausible physical range (registry parameters; see [`crate::params::plausible`]).
+    pub fn plausible(&self) -> Option<(f64, f64)> {
+        match *self {
+            FreeParam::Builtin(p) => Some(crate::params::plausible(p)),
+            _ => None,
         }
     }
     /// Unit (display).
@@ -151,9 +191,41 @@ impl FreeParam {
     }
 }
 
+/// What the data say about a fitted parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ParamStatus {
+    /// Determined by the data: finite standard error.
+    Determined,
+    /// At its lower bound: the data push it further; no standard error.
+    AtLowerBound,
+    /// At its upper bound.
+    AtUpperBound,
+    /// The data do not determine it (the model does not depend on it, or only through a
+    /// combination with other free parameters): infinite standard error.
+    NotIdentifiable,
+}
+
+impl ParamStatus {
+    /// Words for reports.
+    pub fn note(&self) -> &'static str {
+        match self {
+            ParamStatus::Determined => "",
+            ParamStatus::AtLowerBound => "at its lower bound",
+            ParamStatus::AtUpperBound => "at its upper bound",
+            ParamStatus::NotIdentifiable => "not identifiable from these data",
+        }
+    }
+}
+
 /// Result of a fit.
 #[derive(Clone, Debug)]
 pub struct FitResult {
+    /// Status of each free parameter (order of `params`).
+    pub status: Vec<ParamStatus>,
+    /// Warnings: fitted values outside their plausible physical range, solver stops that are
+    /// not convergence.
+    pub warnings: Vec<String>,
     /// The fitted configuration.
     pub config: Config,
     /// CV(RMSE) before the fit, %.
@@ -224,17 +296,6 @@ impl Map {
             }
         }
     }
-    /// dp/dz
-    fn dp_dz(self, z: f64) -> f64 {
-        match self {
-            Map::Identity => 1.0,
-            Map::Exp { .. } => z.exp(),
-            Map::Logistic { lo, hi } => {
-                let e = (-z).exp();
-                (hi - lo) * e / ((1.0 + e) * (1.0 + e))
-            }
-        }
-    }
 }
 
 /// Model values for the measured points under a configuration.
@@ -268,15 +329,37 @@ impl Problem<'_> {
         (self.progress)(n);
         let r = self.config_at(z).and_then(|c| (self.model)(&c));
         match r {
-            Ok(p) => Some(DVector::from_iterator(
-                p.len(),
-                p.iter().zip(&self.meas).map(|(m, y)| m - y),
-            )),
+            Ok(p) => {
+                if let Some(k) = p.iter().position(|x| !x.is_finite()) {
+                    *self.error.borrow_mut() = Some(CreepError::Fit(format!(
+                        "the model value of point {} is {} at {}",
+                        k + 1,
+                        p[k],
+                        self.describe(z)
+                    )));
+                    return None;
+                }
+                Some(DVector::from_iterator(
+                    p.len(),
+                    p.iter().zip(&self.meas).map(|(m, y)| m - y),
+                ))
+            }
             Err(e) => {
                 *self.error.borrow_mut() = Some(e);
                 None
             }
         }
+    }
+}
+
+impl Problem<'_> {
+    fn describe(&self, z: &DVector<f64>) -> String {
+        self.free
+            .iter()
+            .enumerate()
+            .map(|(k, id)| format!("{} = {}", id.name(&self.base), self.maps[k].to_p(z[k])))
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 }
 
@@ -351,7 +434,7 @@ pub fn fit_generic(
         });
     }
     if meas.len() <= free.len() {
-        return Err(CreepError::Config {
+        return Err(CreepError::Data {
             source_name: source.into(),
             message: format!(
                 "{} rows cannot determine {} parameters",
@@ -369,6 +452,12 @@ pub fn fit_generic(
     let z0 = DVector::from_iterator(free.len(), maps.iter().zip(&start).map(|(m, s)| m.to_z(*s)));
     let before = model(cfg)?;
     let cv_before = cv_rmse_pct(meas, &before);
+    if !cv_before.is_finite() {
+        let mean = meas.iter().sum::<f64>() / meas.len() as f64;
+        return Err(CreepError::Fit(format!(
+            "CV(RMSE) of {source} is not finite before the fit ({cv_before}): the mean measured traction coefficient is {mean}; CV(RMSE) divides by it"
+        )));
+    }
     let problem = Problem {
         base: cfg.clone(),
         meas: meas.to_vec(),
@@ -384,62 +473,210 @@ pub fn fit_generic(
         .with_patience(30)
         .minimize(problem);
     if let Some(e) = problem.error.borrow_mut().take() {
-        return Err(e);
+        return Err(match e {
+            CreepError::Fit(m) => CreepError::Fit(m),
+            other => CreepError::Fit(other.to_string()),
+        });
+    }
+    use levenberg_marquardt::TerminationReason as T;
+    let mut warnings = Vec::new();
+    match report.termination {
+        T::User(m) | T::Numerical(m) => {
+            return Err(CreepError::Fit(format!("the solver stopped: {m}")))
+        }
+        T::NoParameters | T::NoResiduals | T::WrongDimensions(_) => {
+            return Err(CreepError::Fit(format!(
+                "the solver stopped: {:?}",
+                report.termination
+            )))
+        }
+        T::LostPatience | T::NoImprovementPossible(_) => warnings.push(format!(
+            "the solver stopped without meeting its convergence tolerances ({:?}); the result is the best point found",
+            report.termination
+        )),
+        _ => {}
     }
     let z = problem.z.clone();
     let fitted = problem.config_at(&z)?;
-    let model_values: Vec<f64> = model(&fitted)?;
+    let model_values: Vec<f64> = model(&fitted).map_err(|e| CreepError::Fit(e.to_string()))?;
     let cv_after = cv_rmse_pct(meas, &model_values);
-    // covariance in parameter units
-    let jz = problem
-        .jacobian()
-        .ok_or_else(|| CreepError::State("Jacobian at the optimum failed".into()))?;
-    let mut jp = jz.clone();
-    for k in 0..free.len() {
-        let d = maps[k].dp_dz(z[k]);
-        let col = jz.column(k) / d;
-        jp.set_column(k, &col);
+    if !cv_after.is_finite() {
+        return Err(CreepError::Fit(format!(
+            "CV(RMSE) after the fit is not finite ({cv_after})"
+        )));
     }
-    let n = meas.len();
-    let rss: f64 = meas
-        .iter()
-        .zip(&model_values)
-        .map(|(a, b)| (a - b) * (a - b))
-        .sum();
-    let s2 = rss / (n - free.len()) as f64;
-    let jtj = jp.transpose() * &jp;
-    let cov = jtj.clone().try_inverse().map(|m| m * s2);
-    let (stderr, corr) = match cov {
-        Some(c) => {
-            let se: Vec<f64> = (0..free.len()).map(|k| c[(k, k)].max(0.0).sqrt()).collect();
-            let corr = (0..free.len())
-                .map(|i| {
-                    (0..free.len())
-                        .map(|j| c[(i, j)] / (se[i] * se[j]).max(f64::MIN_POSITIVE))
-                        .collect()
-                })
-                .collect();
-            (se, corr)
+    let values: Vec<f64> = free.iter().map(|id| id.get(&fitted)).collect();
+    let (status, stderr, corr, evals) =
+        uncertainties(&fitted, meas, &model_values, model, free, &start)?;
+    for (k, id) in free.iter().enumerate() {
+        if let Some((lo, hi)) = id.plausible() {
+            if values[k] < lo || values[k] > hi {
+                warnings.push(format!(
+                    "{} = {} {} is outside its plausible physical range [{lo}, {hi}]: check the data, or narrow its bounds (--bound {}=MIN:MAX)",
+                    id.name(cfg),
+                    values[k],
+                    id.unit(),
+                    id.name(cfg)
+                ));
+            }
         }
-        None => (
-            vec![f64::INFINITY; free.len()],
-            vec![vec![f64::NAN; free.len()]; free.len()],
-        ),
-    };
+    }
     let params = free
         .iter()
         .enumerate()
-        .map(|(k, id)| (id.name(cfg), start[k], id.get(&fitted), stderr[k]))
+        .map(|(k, id)| (id.name(cfg), start[k], values[k], stderr[k]))
         .collect();
     Ok(FitResult {
+        status,
+        warnings,
         config: fitted,
         cv_rmse_pct_before: cv_before,
         cv_rmse_pct_after: cv_after,
         params,
         correlation: corr,
-        evaluations: problem.evals.get(),
+        evaluations: problem.evals.get() + evals,
         termination: format!("{:?}", report.termination),
     })
+}
+
+type Uncertainty = (Vec<ParamStatus>, Vec<f64>, Vec<Vec<f64>>, usize);
+
+/// Standard errors and correlations, computed the same way for every kind of parameter: the
+/// Jacobian of the model values in parameter units (central differences, one-sided next to a
+/// bound) at the optimum, s^2 = RSS/(n - k), covariance s^2 (J^T J)^-1 over the parameters
+/// that are neither at a bound nor unidentifiable. At a bound: status AtLower/UpperBound,
+/// standard error NaN. Unidentifiable (a zero Jacobian column, or a near-null direction of the
+/// column-scaled J^T J, eigenvalue < 1e-10 of the largest): status NotIdentifiable, standard
+/// error infinite. Correlations of excluded parameters are NaN.
+fn uncertainties(
+    fitted: &Config,
+    meas: &[f64],
+    values: &[f64],
+    model: ModelFn,
+    free: &[FreeParam],
+    start: &[f64],
+) -> Result<Uncertainty> {
+    let m = free.len();
+    let mut status = vec![ParamStatus::Determined; m];
+    let mut evals = 0;
+    let mut cols: Vec<Option<Vec<f64>>> = vec![None; m];
+    for (k, id) in free.iter().enumerate() {
+        let (lo, hi) = id.bounds(fitted);
+        let p = id.get(fitted);
+        // the width of a finite interval, unless it is far wider than the values (then the
+        // values' magnitude, as for a parameter bounded below only)
+        let mag = p.abs().max(start[k].abs()).max(1e-9);
+        let scale = if lo.is_finite() && hi.is_finite() && hi - lo < 1e3 * mag {
+            hi - lo
+        } else {
+            mag
+        };
+        let tol = 1e-4 * scale;
+        if p - lo <= tol {
+            status[k] = ParamStatus::AtLowerBound;
+            continue;
+        }
+        if hi - p <= tol {
+            status[k] = ParamStatus::AtUpperBound;
+            continue;
+        }
+        let h = (1e-3 * p.abs())
+            .max(1e-6 * scale)
+            .min(0.5 * (p - lo))
+            .min(0.5 * (hi - p));
+        let eval = |x: f64| -> Result<Vec<f64>> {
+            let mut c = fitted.clone();
+            id.set(&mut c, x)?;
+            model(&c)
+                .map_err(|e| CreepError::Fit(format!("uncertainty of {}: {e}", id.name(fitted))))
+        };
+        let (a, b) = (eval(p - h)?, eval(p + h)?);
+        evals += 2;
+        cols[k] = Some(a.iter().zip(&b).map(|(a, b)| (b - a) / (2.0 * h)).collect());
+    }
+    let n = meas.len();
+    let rss: f64 = meas
+        .iter()
+        .zip(values)
+        .map(|(a, b)| (a - b) * (a - b))
+        .sum();
+    let s2 = rss / (n - m) as f64;
+    // column norms; zero columns are unidentifiable
+    let norm: Vec<f64> = cols
+        .iter()
+        .map(|c| {
+            c.as_ref()
+                .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
+                .unwrap_or(0.0)
+        })
+        .collect();
+    let big = norm.iter().cloned().fold(0.0, f64::max);
+    for k in 0..m {
+        if status[k] == ParamStatus::Determined && !(norm[k] > 1e-12 * big.max(1e-300)) {
+            status[k] = ParamStatus::NotIdentifiable;
+        }
+    }
+    // near-null directions of the scaled normal matrix
+    loop {
+        let act: Vec<usize> = (0..m)
+            .filter(|&k| status[k] == ParamStatus::Determined)
+            .collect();
+        if act.is_empty() {
+            break;
+        }
+        let jn = DMatrix::from_fn(n, act.len(), |i, j| {
+            cols[act[j]].as_ref().map(|c| c[i]).unwrap_or(0.0) / norm[act[j]]
+        });
+        let a = jn.transpose() * &jn;
+        let eig = a.clone().symmetric_eigen();
+        let lmax = eig.eigenvalues.iter().cloned().fold(0.0, f64::max);
+        let (imin, lmin) =
+            eig.eigenvalues
+                .iter()
+                .cloned()
+                .enumerate()
+                .fold(
+                    (0, f64::INFINITY),
+                    |b, (i, l)| if l < b.1 { (i, l) } else { b },
+                );
+        if lmin > 1e-10 * lmax {
+            break;
+        }
+        // the parameter with the largest share in the null direction cannot be determined
+        let v = eig.eigenvectors.column(imin);
+        let (jmax, _) =
+            v.iter().enumerate().fold(
+                (0, -1.0),
+                |b, (j, x)| if x.abs() > b.1 { (j, x.abs()) } else { b },
+            );
+        status[act[jmax]] = ParamStatus::NotIdentifiable;
+    }
+    let mut se = vec![f64::NAN; m];
+    let mut corr = vec![vec![f64::NAN; m]; m];
+    for k in 0..m {
+        if status[k] == ParamStatus::NotIdentifiable {
+            se[k] = f64::INFINITY;
+        }
+    }
+    let act: Vec<usize> = (0..m)
+        .filter(|&k| status[k] == ParamStatus::Determined)
+        .collect();
+    if !act.is_empty() {
+        let jn = DMatrix::from_fn(n, act.len(), |i, j| {
+            cols[act[j]].as_ref().map(|c| c[i]).unwrap_or(0.0) / norm[act[j]]
+        });
+        let a = jn.transpose() * &jn;
+        let inv = a.try_inverse().ok_or_else(|| {
+            CreepError::Fit("the normal matrix of the determined parameters is singular".into())
+        })?;
+        for (i, &ki) in act.iter().enumerate() {
+            se[ki] = (s2 * inv[(i, i)]).max(0.0).sqrt() / norm[ki];
+            for (j, &kj) in act.iter().enumerate() {
+                corr[ki][kj] = inv[(i, j)] / (inv[(i, i)] * inv[(j, j)]).sqrt();
+            }
+        }
+    }
+    Ok((status, se, corr, evals))
 }
 
 #[cfg(test)]

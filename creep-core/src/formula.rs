@@ -247,6 +247,16 @@ impl Parser<'_> {
     }
 }
 
+fn uses_vars(n: &Node) -> bool {
+    match n {
+        Node::Num(_) | Node::Param(_) => false,
+        Node::Var(_) => true,
+        Node::Neg(a) => uses_vars(a),
+        Node::Bin(_, a, b) => uses_vars(a) || uses_vars(b),
+        Node::Call(_, args) => args.iter().any(uses_vars),
+    }
+}
+
 fn eval(n: &Node, vars: &[f64], params: &[(String, f64, f64, f64)]) -> f64 {
     match n {
         Node::Num(x) => *x,
@@ -313,6 +323,17 @@ impl FormulaEffect {
             });
         }
         let (columns, local) = (p.columns, p.local);
+        // a factor that depends on no variable is known now: finite and >= 0
+        if !uses_vars(&expr) {
+            let x = eval(&expr, &[], &params);
+            if !(x.is_finite() && x >= 0.0) {
+                return Err(CreepError::OutOfRange {
+                    field: format!("formula_effects.{name}.factor '{factor}'"),
+                    value: x,
+                    expected: format!("a factor scaling {} must be finite and >= 0", target.name()),
+                });
+            }
+        }
         Ok(FormulaEffect {
             name: name.into(),
             target,

@@ -396,19 +396,58 @@ pub fn by_name(name: &str) -> Option<P> {
     SPECS.iter().find(|s| s.name == name).map(|s| s.id)
 }
 
-/// A full set of parameter values, in display units.
+/// Plausible physical range of a parameter (display unit): values the seed's tables
+/// (Tab. 4.1, 5.2, 5.4: the presets), its measurements and steel data make credible,
+/// widened generously. A fitted value outside it is not refused but warned about.
+pub fn plausible(id: P) -> (f64, f64) {
+    match id {
+        P::Mu => (0.02, 0.8),
+        P::G => (60.0, 100.0),
+        P::Nu => (0.2, 0.35),
+        P::Le0 => (0.005, 10.0),
+        P::LeP => (0.1, INF),
+        P::LeT => (0.0, 0.1),
+        P::Lp0 => (1e-3, 5.0),
+        P::LpP => (0.0, 500.0),
+        P::LpT => (0.0, 0.1),
+        P::Tc10 => (0.005, 1.5),
+        P::Tc1P => (0.0, 20.0),
+        P::Tc1T => (0.0, 0.1),
+        P::Tc20 => (0.02, 3.0),
+        P::Tc2P => (0.0, 20.0),
+        P::Tc2T => (0.0, 0.1),
+        P::T0 => (-40.0, 60.0),
+        P::LambdaW | P::LambdaR => (10.0, 100.0),
+        P::KappaW | P::KappaR => (3.0, 30.0),
+        P::Kq => (0.5, 1.0),
+        P::PolMu0 => (0.03, 0.8),
+        P::PolA => (0.05, 1.0),
+        P::PolB => (0.0, 5.0),
+        P::PolKA => (0.05, 1.0),
+        P::PolKS => (0.005, 1.0),
+    }
+}
+
+/// A full set of parameter values, in display units, with the bounds a fit may use (the
+/// registry's, or narrower ones the user gave).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Params {
     values: [f64; N_PARAMS],
+    lo: [f64; N_PARAMS],
+    hi: [f64; N_PARAMS],
 }
 
 impl Default for Params {
     fn default() -> Self {
         let mut values = [0.0; N_PARAMS];
+        let mut lo = [0.0; N_PARAMS];
+        let mut hi = [0.0; N_PARAMS];
         for s in SPECS {
             values[s.id as usize] = s.default;
+            lo[s.id as usize] = s.min;
+            hi[s.id as usize] = s.max;
         }
-        Params { values }
+        Params { values, lo, hi }
     }
 }
 
@@ -427,21 +466,60 @@ impl Params {
     /// Sets a value (display unit), checking its bounds. NaN is rejected; `max` may be infinite.
     pub fn set(&mut self, id: P, value: f64) -> Result<()> {
         let s = spec(id);
-        if value.is_nan()
-            || value < s.min
-            || value > s.max
-            || (value.is_infinite() && s.max.is_finite())
-        {
+        let (lo, hi) = self.bounds(id);
+        if value.is_nan() || value < lo || value > hi || (value.is_infinite() && hi.is_finite()) {
             return Err(CreepError::OutOfRange {
                 field: s.name.to_string(),
                 value,
-                expected: format!(
-                    "must be within [{}, {}] {} ({})",
-                    s.min, s.max, s.unit, s.description
-                ),
+                expected: format!("must be within [{lo}, {hi}] {} ({})", s.unit, s.description),
             });
         }
         self.values[id as usize] = value;
+        Ok(())
+    }
+
+    /// Bounds a fit keeps the parameter in (display unit).
+    pub fn bounds(&self, id: P) -> (f64, f64) {
+        (self.lo[id as usize], self.hi[id as usize])
+    }
+
+    /// True if the bounds are narrower than the registry's.
+    pub fn narrowed(&self, id: P) -> bool {
+        let s = spec(id);
+        self.bounds(id) != (s.min, s.max)
+    }
+
+    /// Narrows the bounds of a parameter for fitting: `lo < hi`, both within the registry's
+    /// bounds, and the current value inside.
+    pub fn set_bounds(&mut self, id: P, lo: f64, hi: f64) -> Result<()> {
+        let s = spec(id);
+        if lo.is_nan() || hi.is_nan() || lo >= hi || lo < s.min || hi > s.max {
+            return Err(CreepError::OutOfRange {
+                field: format!("bounds of {}", s.name),
+                value: if lo.is_nan() || lo < s.min || lo >= hi {
+                    lo
+                } else {
+                    hi
+                },
+                expected: format!(
+                    "need min < max within the registry's bounds [{}, {}] {}",
+                    s.min, s.max, s.unit
+                ),
+            });
+        }
+        let v = self.get(id);
+        if v < lo || v > hi {
+            return Err(CreepError::OutOfRange {
+                field: s.name.to_string(),
+                value: v,
+                expected: format!(
+                    "the value must lie within its bounds [{lo}, {hi}] {}",
+                    s.unit
+                ),
+            });
+        }
+        self.lo[id as usize] = lo;
+        self.hi[id as usize] = hi;
         Ok(())
     }
 

@@ -264,17 +264,31 @@ fn hidden_effect_of_an_extra_column_is_found_by_residuals_and_a_formula_fixes_it
         "{:?}",
         d.correlations
     );
+    // first: the generic formula on humidity, or the registered Rust effect that uses the
+    // humidity column (it has exactly the hidden form)
     assert!(
-        d.candidates[0].effect.starts_with("formula:"),
+        d.candidates[0].effect.contains("humidity"),
         "{:#?}",
         d.candidates
     );
-    assert!(d.candidates[0].effect.contains("humidity"));
     assert!(d.missing_effect.is_some(), "{}", d.verdict);
+    let formula = d
+        .candidates
+        .iter()
+        .find(|c| c.effect.starts_with("formula:") && c.effect.contains("humidity"))
+        .expect("a formula candidate on humidity");
     assert!(
-        d.candidates[0].fitted_cv_rmse_pct < 1.5 * noise_cv(&data, sd),
-        "{:?}",
-        d.candidates[0]
+        formula.fitted_cv_rmse_pct < 1.5 * noise_cv(&data, sd),
+        "{formula:?}"
+    );
+    let rust = d
+        .candidates
+        .iter()
+        .find(|c| c.effect == "Rust effect humidity_softening")
+        .expect("the registered Rust effect is tried");
+    assert!(
+        rust.fitted_cv_rmse_pct < 1.5 * noise_cv(&data, sd),
+        "{rust:?}"
     );
     // the user writes the formula and fits its parameter from a wrong start: noise level
     let user = Config::from_json_str(

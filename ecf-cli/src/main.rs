@@ -111,7 +111,14 @@ enum Cmd {
         /// Parameters to fit, comma separated (names as in `ecf info`); default: the layer strengths and hardening scale (+ their temperature coefficients)
         #[arg(long)]
         free: Option<String>,
-        /// Where to write the fitted configuration JSON
+        /// Narrow a parameter's bounds for this fit, NAME=MIN:MAX (repeatable), e.g. tau_c2_0_GPa=0.2:2
+        #[arg(
+            long = "bound",
+            value_name = "NAME=MIN:MAX",
+            allow_hyphen_values = true
+        )]
+        bounds: Vec<String>,
+        /// Where to write the fitted configuration JSON (left untouched when the fit fails)
         #[arg(long)]
         out: PathBuf,
         /// Print the result as JSON
@@ -136,19 +143,49 @@ struct DataArgs {
     /// Worker threads
     #[arg(long, default_value_t = 2)]
     threads: usize,
+    /// Speed of every row, m/s, for a data file without a speed column (no silent default)
+    #[arg(long)]
+    v_mps: Option<f64>,
+    /// Normal force of every row, kN, for a data file without a load column (no silent default)
+    #[arg(long = "fn-kN", visible_alias = "fn-kn")]
+    fn_kn: Option<f64>,
+    /// Unit of creepage columns whose header gives none: 1 (dimensionless, 0.01 = 1 %) or percent
+    #[arg(long)]
+    cx_unit: Option<String>,
+    /// Do not print the column mapping of the data file on stderr
+    #[arg(long)]
+    quiet: bool,
 }
 
 impl DataArgs {
     /// The configuration and the measurement file, read once.
     fn load(&self) -> Result<(Config, Data), CreepError> {
-        Ok((self.config_only()?, measure_cmd::read_data(&self.data)?))
+        let cfg = self.config_only()?;
+        let mut defaults = creep_core::measure::Defaults::default();
+        if let Some(v) = self.v_mps {
+            defaults.v_mps = Some(creep_core::error::check_range(
+                "--v-mps", v, 0.0, 200.0, "m/s",
+            )?);
+        }
+        if let Some(f) = self.fn_kn {
+            defaults.fn_kn = Some(creep_core::error::check_range(
+                "--fn-kN", f, 1e-6, 5000.0, "kN",
+            )?);
+        }
+        if let Some(u) = &self.cx_unit {
+            defaults.cx_unit = Some(creep_core::measure::CreepageUnit::parse(u)?);
+        }
+        Ok((
+            cfg,
+            measure_cmd::read_data(&self.data, &defaults, self.quiet)?,
+        ))
     }
 
     /// Like `load`, for commands that need creep measurements (not HPT curves).
     fn load_rows(&self) -> Result<(Config, creep_core::measure::Dataset), CreepError> {
         match self.load()? {
             (cfg, Data::Rows(d)) => Ok((cfg, d)),
-            (_, Data::Hpt(_)) => Err(CreepError::Config {
+            (_, Data::Hpt(_)) => Err(CreepError::Data {
                 source_name: self.data.display().to_string(),
                 message: "a high-pressure-torsion file (p_MPa, u_mm, tau_MPa): use ecf compare or ecf fit".into(),
             }),
@@ -585,13 +622,33 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             measure_cmd::report(&cfg, &first_name, second.as_ref(), &data, d.threads, &out)?;
             writeln!(w, "{}", out.display()).map_err(io)?;
         }
-        Cmd::Fit { d, free, out, json } => match d.load()? {
-            (cfg, Data::Hpt(rows)) => {
-                measure_cmd::fit_hpt(&cfg, &d.data, &rows, free.as_deref(), &out, json, &mut w)?
-            }
-            (cfg, Data::Rows(data)) => {
-                measure_cmd::fit(&cfg, &data, d.threads, free.as_deref(), &out, json, &mut w)?
-            }
+        Cmd::Fit {
+            d,
+            free,
+            bounds,
+            out,
+            json,
+        } => match d.load()? {
+            (cfg, Data::Hpt(rows)) => measure_cmd::fit_hpt(
+                &cfg,
+                &d.data,
+                &rows,
+                free.as_deref(),
+                &bounds,
+                &out,
+                json,
+                &mut w,
+            )?,
+            (cfg, Data::Rows(data)) => measure_cmd::fit(
+                &cfg,
+                &data,
+                d.threads,
+                free.as_deref(),
+                &bounds,
+                &out,
+                json,
+                &mut w,
+            )?,
         },
         Cmd::Info => {
             writeln!(

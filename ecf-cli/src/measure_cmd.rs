@@ -26,6 +26,16 @@ pub fn compare(
 ) -> Result<(), CreepError> {
     let pred = predict(cfg, data, threads)?;
     let c = cmp(data, &pred);
+    if !c.cv_rmse_pct.is_finite() {
+        let mean = data.rows.iter().map(|r| r.f).sum::<f64>() / data.rows.len() as f64;
+        return Err(CreepError::Data {
+            source_name: data.source.clone(),
+            message: format!(
+                "CV(RMSE) is not finite ({}): the mean measured traction coefficient is {mean} and CV(RMSE) divides by it (Eq. 2.9)",
+                c.cv_rmse_pct
+            ),
+        });
+    }
     if let Some(dir) = plots {
         write_plots(cfg, data, &pred, dir)?;
     }
@@ -74,12 +84,15 @@ pub fn compare(
     Ok(())
 }
 
+/// Writes the PNGs; returns (file, caption in words) in report order: measured against model
+/// per series first, then the residual plots.
 fn write_plots(
     cfg: &Config,
     data: &Dataset,
     pred: &[Prediction],
     dir: &Path,
-) -> Result<(), CreepError> {
+) -> Result<Vec<(std::path::PathBuf, String)>, CreepError> {
+    let mut written = Vec::new();
     std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
         source_name: dir.display().to_string(),
         message: format!("cannot create: {e}"),
@@ -146,14 +159,17 @@ fn write_plots(
                 color: 1,
             },
         ];
-        xy_plot(
-            &dir.join(format!("series_{k:02}_{}.png", sanitize(s))),
-            &title,
-            xlabel,
-            "traction coefficient f (-)",
-            &sets,
-        )
-        .map_err(err)?;
+        let file = dir.join(format!("series_{k:02}_{}.png", sanitize(s)));
+        xy_plot(&file, &title, xlabel, "traction coefficient f (-)", &sets).map_err(err)?;
+        written.push((
+            file,
+            format!(
+                "Measured traction coefficient (points) and model (line) of series '{s}' at {} m/s and {} kN, over {}.",
+                r0.v,
+                r0.fn_n / 1e3,
+                if r0.t.is_some() { "time" } else { "creepage" }
+            ),
+        ));
     }
     let res: Vec<f64> = data.rows.iter().zip(pred).map(|(r, p)| p.f - r.f).collect();
     let mut vars: Vec<(String, String, Vec<f64>)> = vec![
@@ -204,16 +220,32 @@ fn write_plots(
             })
             .filter(|s| !s.xy.is_empty())
             .collect();
+        let file = dir.join(format!("residual_over_{}.png", sanitize(&name)));
         xy_plot(
-            &dir.join(format!("residual_over_{}.png", sanitize(&name))),
+            &file,
             &format!("residual f_model - f_measured over {name}"),
             &label,
             "residual (-)",
             &sets,
         )
         .map_err(err)?;
+        written.push((
+            file,
+            format!(
+                "Residual (model minus measured traction coefficient) over {label}, coloured by creepage regime (R1 steep rise, R2 moderate rise, R3 falling branch)."
+            ),
+        ));
     }
-    Ok(())
+    Ok(written)
+}
+
+/// Removes a temporary folder when dropped (also when a report fails half-way).
+struct TempDir(std::path::PathBuf);
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
 }
 
 fn sanitize(s: &str) -> String {
@@ -228,16 +260,41 @@ fn sanitize(s: &str) -> String {
         .collect()
 }
 
+/// The configuration with `--bound NAME=MIN:MAX` applied.
+pub fn with_bounds(cfg: &Config, bounds: &[String]) -> Result<Config, CreepError> {
+    let mut c = cfg.clone();
+    for b in bounds {
+        let bad = || CreepError::Config {
+            source_name: "--bound".into(),
+            message: format!("'{b}': expected NAME=MIN:MAX, e.g. tau_c2_0_GPa=0.2:2"),
+        };
+        let (n, r) = b.split_once('=').ok_or_else(bad)?;
+        let (lo, hi) = r.split_once(':').ok_or_else(bad)?;
+        let num = |t: &str| -> Result<f64, CreepError> {
+            match t.trim() {
+                "inf" => Ok(f64::INFINITY),
+                "-inf" => Ok(f64::NEG_INFINITY),
+                t => t.parse().map_err(|_| bad()),
+            }
+        };
+        let id = FreeParam::resolve(&c, n.trim())?;
+        id.set_bounds(&mut c, num(lo)?, num(hi)?)?;
+    }
+    Ok(c)
+}
+
 /// Fits, writes the fitted configuration atomically and reports.
 pub fn fit(
     cfg: &Config,
     data: &Dataset,
     threads: usize,
     free: Option<&str>,
+    bounds: &[String],
     out: &Path,
     json: bool,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
+    let cfg = &with_bounds(cfg, bounds)?;
     let free: Vec<FreeParam> = match free {
         Some(list) => list
             .split(',')
@@ -298,6 +355,13 @@ pub fn diagnose(
     )
     .map_err(io)?;
     writeln!(w, "CV(RMSE) as given {:.2} %; held-out (folds by {}, {} folds) with its own parameters refitted {:.2} %", d.baseline_cv_rmse_pct, d.folds_by, d.folds, d.baseline_heldout_cv_rmse_pct).map_err(io)?;
+    if d.catalogue_all_on {
+        writeln!(
+            w,
+            "\nevery catalogue effect is already in the configuration: nothing in the catalogue to add"
+        )
+        .map_err(io)?;
+    }
     writeln!(
         w,
         "\nresidual correlations (model - measured), strongest first:"
@@ -306,7 +370,9 @@ pub fn diagnose(
     for c in &d.correlations {
         writeln!(w, "  {:<22} r = {:+.2}", c.variable, c.r).map_err(io)?;
     }
-    writeln!(w, "\ncandidate effects, best held-out error first:").map_err(io)?;
+    if !d.candidates.is_empty() {
+        writeln!(w, "\ncandidate effects, best held-out error first:").map_err(io)?;
+    }
     for c in &d.candidates {
         writeln!(
             w,
@@ -337,7 +403,7 @@ fn report_column(
     use base64::Engine;
     let pred = predict(cfg, data, threads)?;
     let c = cmp(data, &pred);
-    write_plots(cfg, data, &pred, tmp)?;
+    let figures = write_plots(cfg, data, &pred, tmp)?;
     let mut h = format!(
         "<h2>{}</h2><p>model <b>{}</b>, effects {}</p>",
         esc(name),
@@ -345,9 +411,9 @@ fn report_column(
         esc(&format!("{:?}", cfg.effects.to_vec()))
     );
     h += &format!("<p class=big>CV(RMSE) = <b>{:.2} %</b> overall, {:.2} % for c<sub>x</sub> &ge; 1 % (seed Eq. 2.9)</p>", c.cv_rmse_pct, c.cv_rmse_pct_cx_ge_1pct);
-    h += "<table><tr><th>group</th><th>value</th><th>n</th><th>CV(RMSE) %</th><th>mean residual</th></tr>";
+    let mut table = String::from("<table><tr><th>group</th><th>value</th><th>n</th><th>CV(RMSE) %</th><th>mean residual</th></tr>");
     for g in &c.groups {
-        h += &format!(
+        table += &format!(
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{:+.4}</td></tr>",
             esc(&g.by),
             esc(&g.value),
@@ -356,23 +422,24 @@ fn report_column(
             g.mean_residual
         );
     }
-    h += "</table>";
-    let mut pngs: Vec<_> = std::fs::read_dir(tmp)
-        .map_err(|e| CreepError::Config {
-            source_name: tmp.display().to_string(),
-            message: e.to_string(),
-        })?
-        .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .collect();
-    pngs.sort();
-    for p in pngs {
-        let bytes = std::fs::read(&p).map_err(|e| CreepError::Config {
+    table += "</table>";
+    let n_series = data.series().len();
+    for (k, (p, caption)) in figures.iter().enumerate() {
+        if k == n_series {
+            h += "<h3>Residuals</h3>";
+        }
+        let bytes = std::fs::read(p).map_err(|e| CreepError::Config {
             source_name: p.display().to_string(),
             message: e.to_string(),
         })?;
         let b64 = base64::engine::general_purpose::STANDARD.encode(bytes);
-        h += &format!("<figure><img alt=\"{}\" src=\"data:image/png;base64,{b64}\"><figcaption>{}</figcaption></figure>", esc(&p.display().to_string()), esc(&p.file_name().map(|f| f.to_string_lossy().to_string()).unwrap_or_default()));
+        h += &format!(
+            "<figure><img alt=\"{c}\" src=\"data:image/png;base64,{b64}\"><figcaption>{c}</figcaption></figure>",
+            c = esc(caption)
+        );
+        if k + 1 == n_series {
+            h += &table;
+        }
     }
     Ok((h, c.cv_rmse_pct))
 }
@@ -386,7 +453,8 @@ pub fn report(
     threads: usize,
     out: &Path,
 ) -> Result<(), CreepError> {
-    let tmp = std::env::temp_dir().join(format!("ecf-report-{}", std::process::id()));
+    let guard = TempDir(std::env::temp_dir().join(format!("ecf-report-{}", std::process::id())));
+    let tmp = guard.0.clone();
     let _ = std::fs::remove_dir_all(&tmp);
     let (col1, cv1) = report_column(
         cfg,
@@ -405,8 +473,8 @@ pub fn report(
         )?),
         None => None,
     };
+    drop(guard);
     let d = creep_core::diagnose::diagnose(cfg, data, threads, &|_| {})?;
-    let _ = std::fs::remove_dir_all(&tmp);
     let mut diag = format!(
         "<h2>Diagnosis of the first configuration</h2><p><b>{}</b></p>",
         esc(&d.verdict)
@@ -467,18 +535,25 @@ pub enum Data {
 }
 
 /// Reads a measurement file once; a header with `p_MPa`, `u_mm` and `tau_MPa` makes it a
-/// high-pressure-torsion file.
-pub fn read_data(path: &Path) -> Result<Data, CreepError> {
+/// high-pressure-torsion file. The column mapping is printed on stderr.
+pub fn read_data(
+    path: &Path,
+    defaults: &creep_core::measure::Defaults,
+    quiet: bool,
+) -> Result<Data, CreepError> {
+    use creep_core::measure::{detect_delimiter, utf8_text};
     let src = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| CreepError::Config {
+    let bytes = std::fs::read(path).map_err(|e| CreepError::Data {
         source_name: src.clone(),
         message: format!("cannot read: {e}"),
     })?;
+    let text = utf8_text(&bytes, &src)?;
+    let delim = detect_delimiter(&text) as char;
     let hpt = text
         .lines()
         .find(|l| !l.trim_start().starts_with('#'))
         .is_some_and(|h| {
-            let cols: Vec<&str> = h.split(',').map(|c| c.trim()).collect();
+            let cols: Vec<&str> = h.split(delim).map(|c| c.trim()).collect();
             ["p_MPa", "u_mm", "tau_MPa"]
                 .iter()
                 .all(|c| cols.contains(c))
@@ -486,11 +561,11 @@ pub fn read_data(path: &Path) -> Result<Data, CreepError> {
     Ok(if hpt {
         Data::Hpt(creep_core::measure::read_hpt(&text, &src)?)
     } else {
-        Data::Rows(Dataset::from_csv_str(
-            &text,
-            &src,
-            &creep_core::measure::Defaults::default(),
-        )?)
+        let d = Dataset::from_csv_str(&text, &src, defaults)?;
+        if !quiet {
+            eprint!("{}", d.mapping_text());
+        }
+        Data::Rows(d)
     })
 }
 
@@ -594,15 +669,18 @@ pub fn compare_hpt(
 }
 
 /// Fits the layer parameters to high-pressure-torsion curves (written atomically).
+#[allow(clippy::too_many_arguments)]
 pub fn fit_hpt(
     cfg: &Config,
     path: &Path,
     rows: &[creep_core::measure::HptRow],
     free: Option<&str>,
+    bounds: &[String],
     out: &Path,
     json: bool,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
+    let cfg = &with_bounds(cfg, bounds)?;
     let free: Vec<FreeParam> = match free {
         Some(list) => list
             .split(',')
@@ -636,11 +714,23 @@ fn report_fit(
         source_name: out.display().to_string(),
         message: format!("cannot write: {e}"),
     })?;
+    for m in &r.warnings {
+        eprintln!("warning: {m}");
+    }
     if json {
+        let num = |x: f64| {
+            if x.is_finite() {
+                serde_json::json!(x)
+            } else if x.is_infinite() {
+                serde_json::json!("inf")
+            } else {
+                serde_json::Value::Null
+            }
+        };
         let map = |k: usize| -> serde_json::Map<String, serde_json::Value> {
             r.params
                 .iter()
-                .map(|p| (p.0.clone(), serde_json::json!([p.1, p.2, p.3][k])))
+                .map(|p| (p.0.clone(), num([p.1, p.2, p.3][k])))
                 .collect()
         };
         let v = serde_json::json!({
@@ -649,8 +739,10 @@ fn report_fit(
             "params": map(1),
             "stderr": map(2),
             "start": map(0),
+            "status": r.params.iter().zip(&r.status).map(|(p, s)| (p.0.clone(), serde_json::json!(s))).collect::<serde_json::Map<_, _>>(),
             "free": r.params.iter().map(|p| p.0.clone()).collect::<Vec<_>>(),
-            "correlation": r.correlation,
+            "correlation": r.correlation.iter().map(|row| row.iter().map(|x| num(*x)).collect::<Vec<_>>()).collect::<Vec<_>>(),
+            "warnings": r.warnings,
             "evaluations": r.evaluations,
             "termination": r.termination,
             "out": out.display().to_string(),
@@ -664,22 +756,37 @@ fn report_fit(
         r.cv_rmse_pct_before, r.cv_rmse_pct_after, r.evaluations, r.termination
     )
     .map_err(io)?;
-    for (n, s, v, se) in &r.params {
-        let sp = params::by_name(n).map(params::spec);
-        let unit = sp.map(|s| s.unit).unwrap_or("-");
-        let at_bound = sp
-            .map(|sp| *v <= sp.min * (1.0 + 1e-6) || *v >= sp.max * (1.0 - 1e-6))
-            .unwrap_or(false);
-        let note = if at_bound || !se.is_finite() {
-            "  (at a bound or not identifiable from these data)"
-        } else {
-            ""
+    for ((n, s, v, se), st) in r.params.iter().zip(&r.status) {
+        let unit = params::by_name(n)
+            .map(|p| params::spec(p).unit)
+            .unwrap_or("-");
+        let unc = match st {
+            creep_core::fit::ParamStatus::Determined => format!("± {se:.2e}"),
+            creep_core::fit::ParamStatus::NotIdentifiable => "± inf".to_string(),
+            _ => "± -".to_string(),
         };
-        writeln!(
-            w,
-            "  {n:<22} {s:>12.6} -> {v:>12.6} ± {se:.2e} {unit}{note}"
-        )
-        .map_err(io)?;
+        let note = if st.note().is_empty() {
+            String::new()
+        } else {
+            format!("  ({})", st.note())
+        };
+        writeln!(w, "  {n:<22} {s:>12.6} -> {v:>12.6} {unc} {unit}{note}").map_err(io)?;
+    }
+    let det: Vec<usize> = (0..r.params.len())
+        .filter(|&k| r.status[k] == creep_core::fit::ParamStatus::Determined)
+        .collect();
+    for (a, &i) in det.iter().enumerate() {
+        for &j in &det[a + 1..] {
+            let c = r.correlation[i][j];
+            if c.abs() > 0.95 {
+                writeln!(
+                    w,
+                    "  correlation {} / {} = {c:+.3}: the data hardly separate them",
+                    r.params[i].0, r.params[j].0
+                )
+                .map_err(io)?;
+            }
+        }
     }
     writeln!(w, "fitted configuration written to {}", out.display()).map_err(io)?;
     Ok(())

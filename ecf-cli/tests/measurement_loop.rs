@@ -1,0 +1,223 @@
+//! `ecf compare/fit/diagnose` on users' own files: units in headers, delimiters, missing
+//! quantities, failed fits, bounds, nothing to try (issue 12).
+use std::process::Command;
+
+fn ecf(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_ecf"))
+        .args(args)
+        .output()
+        .expect("run ecf");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("ecf-loop-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// (cx, f) of the dry preset at 10 m/s, 110 kN.
+fn points() -> Vec<(f64, f64)> {
+    let (code, out, err) = ecf(&[
+        "curve",
+        "--preset",
+        "dry",
+        "--grid",
+        "20x7",
+        "--v-mps",
+        "10",
+        "--cx",
+        "0.002:0.2:8",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    out.lines()
+        .skip(1)
+        .map(|l| {
+            let c: Vec<f64> = l.split(',').take(2).map(|x| x.parse().unwrap()).collect();
+            (c[0], c[1])
+        })
+        .collect()
+}
+
+fn cv(out: &str) -> f64 {
+    serde_json::from_str::<serde_json::Value>(out).unwrap()["cv_rmse_pct"]
+        .as_f64()
+        .unwrap()
+}
+
+#[test]
+fn units_delimiters_and_missing_quantities() {
+    let d = dir("units");
+    let pts = points();
+    let mut plain = String::from("cx,f,v_mps,fn_kN,humidity\n");
+    let mut semi = String::from("cx [%];f;v [km/h];Fn_N;humidity\n");
+    let mut bare = String::from("cx,f\n");
+    let mut pct = String::from("cx,f,v_mps,fn_kN\n");
+    for (c, f) in &pts {
+        let f = f * 0.97;
+        plain += &format!("{c},{f},10,110,40\n");
+        semi += &format!("{};{};36;110000;40\n", 100.0 * c, f).replace('.', ",");
+        bare += &format!("{c},{f}\n");
+        pct += &format!("{},{f},10,110\n", 100.0 * c);
+    }
+    let write = |n: &str, t: &str| {
+        let p = d.join(n);
+        std::fs::write(&p, t).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let (plain, semi, bare, pct) = (
+        write("plain.csv", &plain),
+        write("semi.csv", &semi),
+        write("bare.csv", &bare),
+        write("pct.csv", &pct),
+    );
+    let run = |f: &str, extra: &[&str]| {
+        let mut a = vec!["compare", f, "--preset", "dry", "--grid", "20x7", "--json"];
+        a.extend_from_slice(extra);
+        ecf(&a)
+    };
+    let (code, out, err) = run(&plain, &[]);
+    assert_eq!(code, 0, "{err}");
+    let reference = cv(&out);
+    assert!(reference > 1.0, "{reference}");
+    // the same data in percent, km/h, N, ';' and decimal comma
+    let (code, out, err) = run(&semi, &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!((cv(&out) - reference).abs() < 1e-6 * reference, "{out}");
+    assert!(
+        err.contains("'v [km/h]'") && err.contains("v_mps") && err.contains("'Fn_N'"),
+        "{err}"
+    );
+    assert!(err.contains("'humidity'") && err.contains("extra"), "{err}");
+    // no speed or load: an error, unless given by flags
+    let (code, _, err) = run(&bare, &[]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--v-mps") && err.contains("data file"),
+        "{err}"
+    );
+    let (code, out, err) = run(&bare, &["--v-mps", "10", "--fn-kN", "110"]);
+    assert_eq!(code, 0, "{err}");
+    assert!((cv(&out) - reference).abs() < 1e-6 * reference);
+    // percent without a unit: stop; with --cx-unit percent: the same result
+    let (code, _, err) = run(&pct, &[]);
+    assert_eq!(code, 2);
+    assert!(err.contains("looks like percent"), "{err}");
+    let (code, out, err) = run(&pct, &["--cx-unit", "percent"]);
+    assert_eq!(code, 0, "{err}");
+    assert!((cv(&out) - reference).abs() < 1e-6 * reference);
+}
+
+#[test]
+fn failed_fits_exit_nonzero_and_leave_out_untouched_and_bounds_hold() {
+    let d = dir("fail");
+    let pts = points();
+    let mut zero = String::from("cx,f,v_mps,fn_kN\n");
+    let mut good = String::from("cx,f,v_mps,fn_kN\n");
+    for (c, f) in &pts {
+        zero += &format!("{c},{f},10,110\n-{c},-{f},10,110\n");
+        good += &format!("{c},{},10,110\n", f * 0.9);
+    }
+    let zp = d.join("zero.csv");
+    let gp = d.join("good.csv");
+    std::fs::write(&zp, zero).unwrap();
+    std::fs::write(&gp, good).unwrap();
+    let out = d.join("fitted.json");
+    std::fs::write(&out, "previous result\n").unwrap();
+    let (code, _, err) = ecf(&[
+        "compare",
+        zp.to_str().unwrap(),
+        "--preset",
+        "dry",
+        "--grid",
+        "20x7",
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("not finite"), "{err}");
+    let (code, stdout, err) = ecf(&[
+        "fit",
+        zp.to_str().unwrap(),
+        "--preset",
+        "dry",
+        "--grid",
+        "20x7",
+        "--free",
+        "tau_c2_0_GPa",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_ne!(code, 0, "{stdout}");
+    assert!(err.contains("fit failed"), "{err}");
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "previous result\n");
+    // --bound keeps the parameter inside and the result says it sits at the bound
+    let (code, stdout, err) = ecf(&[
+        "fit",
+        gp.to_str().unwrap(),
+        "--preset",
+        "dry",
+        "--grid",
+        "20x7",
+        "--free",
+        "tau_c2_0_GPa",
+        "--bound",
+        "tau_c2_0_GPa=0.68:2",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let r: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let v = r["params"]["tau_c2_0_GPa"].as_f64().unwrap();
+    assert!((0.68..=0.6801).contains(&v), "{v}");
+    assert_eq!(r["status"]["tau_c2_0_GPa"], "at_lower_bound");
+    let written = std::fs::read_to_string(&out).unwrap();
+    assert!(written.contains("\"min\": 0.68"), "{written}");
+}
+
+#[test]
+fn diagnose_with_every_catalogue_effect_on_says_so() {
+    let d = dir("diag");
+    let mut t = String::from("cx,f,v_mps,fn_kN\n");
+    for v in ["5", "20"] {
+        let (code, out, err) = ecf(&[
+            "curve",
+            "--preset",
+            "dry",
+            "--grid",
+            "20x7",
+            "--v-mps",
+            v,
+            "--cx",
+            "0.002:0.2:6",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        for l in out.lines().skip(1) {
+            let c: Vec<&str> = l.split(',').collect();
+            t += &format!("{},{},{v},110\n", c[0], c[1]);
+        }
+    }
+    let data = d.join("m.csv");
+    std::fs::write(&data, t).unwrap();
+    let cfg = d.join("all.json");
+    std::fs::write(
+        &cfg,
+        "{\"preset\": \"dry\", \"effects\": [\"+elastic_unloading\"]}",
+    )
+    .unwrap();
+    let (code, out, err) = ecf(&[
+        "diagnose",
+        data.to_str().unwrap(),
+        "--config",
+        cfg.to_str().unwrap(),
+        "--grid",
+        "20x7",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("every catalogue effect is already"), "{out}");
+    assert!(!out.contains("candidate effects"), "{out}");
+    assert!(!out.contains("try a formula effect"), "{out}");
+}
