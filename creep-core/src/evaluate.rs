@@ -503,8 +503,9 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
     let mut groups = Vec::new();
     let reg = regimes(data);
     // per key: first-appearance order of the values and their accumulators
-    let mut text_keys: [(Vec<String>, HashMap<&str, usize>, Vec<Acc>); 2] = Default::default();
-    let mut num_keys: [(Vec<f64>, HashMap<u64, usize>, Vec<Acc>); 2] = Default::default();
+    type Keyed<K, H> = (Vec<K>, HashMap<H, usize>, Vec<Acc>);
+    let mut text_keys: [Keyed<String, &str>; 2] = Default::default();
+    let mut num_keys: [Keyed<f64, u64>; 2] = Default::default();
     let mut regime = [Acc::default(); 3];
     let (mut all, mut ge1) = (Acc::default(), Acc::default());
     for (i, r) in data.rows.iter().enumerate() {
