@@ -140,7 +140,7 @@ def test_cli_rejects_bad_input_with_clear_message(args, msg):
 def test_cli_json_summary_keys_with_stand_in_contact(tmp_path):
     if not (ROOT / "target" / "release" / "ecf").is_file():
         pytest.skip("ecf CLI not built")
-    r = _cli("step", "--model", "fastsim", "--contact", "curve", "--t-end", "0.6", "--out", str(tmp_path), "--json",
+    r = _cli("step", "--model", "fastsim", "--contact", "curve", "--t-end", "0.8", "--out", str(tmp_path), "--json",
              "--quiet")
     assert r.returncode == 0, r.stderr
     s = json.loads(r.stdout)
