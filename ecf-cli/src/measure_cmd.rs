@@ -284,6 +284,7 @@ pub fn with_bounds(cfg: &Config, bounds: &[String]) -> Result<Config, CreepError
 }
 
 /// Fits, writes the fitted configuration atomically and reports.
+#[allow(clippy::too_many_arguments)]
 pub fn fit(
     cfg: &Config,
     data: &Dataset,
