@@ -281,7 +281,6 @@ pub fn diagnose(
         .collect();
     let base_heldout = heldout(cfg, data, &labels, &base_free, threads)?;
     let mut candidates = Vec::new();
-    let mut catalogue_tried = 0;
     let mut catalogue_all_on = false;
     if cfg.model != ModelKind::Polach && !cfg.has(Effect::Coulomb) {
         let has_series = data.rows.iter().any(|r| r.t.is_some());
@@ -297,7 +296,6 @@ pub fn diagnose(
                 continue; // no time series: these effects cannot show in steady data
             }
             progress(info.name);
-            catalogue_tried += 1;
             let mut c = cfg.clone();
             c.effects.insert(e);
             let mut free = base_free.clone();
@@ -433,7 +431,6 @@ pub fn diagnose(
         .first()
         .filter(|c| c.heldout_cv_rmse_pct < (1.0 - CLAIM_FRACTION) * base_heldout)
         .map(|c| c.effect.clone());
-    let _ = catalogue_tried;
     // the strongest correlation with something the user can act on: a data column or an
     // operating variable, not a model output
     let strongest_extra = corr.iter().find(|c| data.extra_names.contains(&c.variable));

@@ -248,7 +248,7 @@ fn lines_text(lines: &[usize]) -> String {
 }
 
 /// Key of a steady row's operating point: rows with equal keys have equal predictions.
-fn point_key(cfg: &Config, data: &Dataset, cols: &[usize], r: &Row) -> Vec<u64> {
+fn point_key(cfg: &Config, cols: &[usize], r: &Row) -> Vec<u64> {
     let (a, b) = r.ab.unwrap_or((f64::NAN, f64::NAN));
     let mut k = vec![
         r.cx.to_bits(),
@@ -261,7 +261,6 @@ fn point_key(cfg: &Config, data: &Dataset, cols: &[usize], r: &Row) -> Vec<u64> 
         b.to_bits(),
     ];
     if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
-        let _ = data;
         k.extend(cols.iter().map(|&c| r.extra[c].to_bits()));
     }
     k
@@ -296,7 +295,7 @@ pub fn predict(cfg: &Config, data: &Dataset, threads: usize) -> Result<Vec<Predi
             }
             continue;
         }
-        let key = point_key(cfg, data, &used, r);
+        let key = point_key(cfg, &used, r);
         let n = unique.len();
         let u = *unique.entry(key).or_insert(n);
         if u == n {
@@ -503,9 +502,10 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
     let mut groups = Vec::new();
     let reg = regimes(data);
     // per key: first-appearance order of the values and their accumulators
-    type Keyed<K, H> = (Vec<K>, HashMap<H, usize>, Vec<Acc>);
-    let mut text_keys: [Keyed<String, &str>; 2] = Default::default();
-    let mut num_keys: [Keyed<f64, u64>; 2] = Default::default();
+    type TextKey<'a> = (Vec<String>, HashMap<&'a str, usize>, Vec<Acc>);
+    type NumKey = (Vec<f64>, HashMap<u64, usize>, Vec<Acc>);
+    let mut text_keys: [TextKey; 2] = Default::default();
+    let mut num_keys: [NumKey; 2] = Default::default();
     let mut regime = [Acc::default(); 3];
     let (mut all, mut ge1) = (Acc::default(), Acc::default());
     for (i, r) in data.rows.iter().enumerate() {

@@ -612,9 +612,7 @@ fn uncertainties(
         .collect();
     let big = norm.iter().cloned().fold(0.0, f64::max);
     for k in 0..m {
-        // (NaN counts as not identifiable)
-        let tiny = norm[k].is_nan() || norm[k] <= 1e-12 * big.max(1e-300);
-        if status[k] == ParamStatus::Determined && tiny {
+        if status[k] == ParamStatus::Determined && norm[k] <= 1e-12 * big.max(1e-300) {
             status[k] = ParamStatus::NotIdentifiable;
         }
     }

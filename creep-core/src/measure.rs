@@ -751,9 +751,15 @@ impl Dataset {
             let required = |name: &str| -> Result<f64> {
                 opt(name)?.ok_or_else(|| err(src, line, &hdr(name), "empty".into()))
             };
+            let percent_like = |name: &str, x: f64| -> Result<f64> {
+                if x.abs() > 10.0 && implicit_creepage.contains(&name) {
+                    return Err(err(src, line, &hdr(name), percent_message(name, x)));
+                }
+                Ok(x)
+            };
             let cx = range(
                 "cx",
-                required("cx")?,
+                percent_like("cx", required("cx")?)?,
                 -10.0,
                 10.0,
                 "(dimensionless creepage: 0.01 = 1 %)",
@@ -824,7 +830,7 @@ impl Dataset {
                 cx,
                 cy: range(
                     "cy",
-                    opt("cy")?.unwrap_or(0.0),
+                    percent_like("cy", opt("cy")?.unwrap_or(0.0))?,
                     -10.0,
                     10.0,
                     "(dimensionless)",
@@ -866,15 +872,7 @@ impl Dataset {
                     let h = col_of(name)
                         .map(|c| header[c.idx].clone())
                         .unwrap_or_default();
-                    return Err(err(
-                        src,
-                        line,
-                        &h,
-                        format!(
-                            "{x} looks like percent ({:.0} % creepage if dimensionless); the header gives no unit: name the column '{name} [%]' or '{name}_pct', or pass --cx-unit percent (--cx-unit 1 if the values really are dimensionless)",
-                            100.0 * x.abs()
-                        ),
-                    ));
+                    return Err(err(src, line, &h, percent_message(name, x)));
                 }
             }
         }
@@ -977,6 +975,13 @@ fn show_unit(u: &str) -> String {
         "-" | "1" => "dimensionless".into(),
         _ => u.into(),
     }
+}
+
+fn percent_message(name: &str, x: f64) -> String {
+    format!(
+        "{x} looks like percent ({:.0} % creepage if dimensionless); the header gives no unit: name the column '{name} [%]' or '{name}_pct', or pass --cx-unit percent (--cx-unit 1 if the values really are dimensionless)",
+        100.0 * x.abs()
+    )
 }
 
 /// Creepage (no unit written) above this magnitude is taken to be percent and refused.
