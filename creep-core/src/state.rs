@@ -169,9 +169,10 @@ impl Model {
         let cfg = std::str::from_utf8(r.take(n)?)
             .map_err(|_| CreepError::State("configuration is not UTF-8".into()))?
             .to_string();
-        let same = serde_json::from_str::<serde_json::Value>(&cfg)
-            .map(|v| v == self.config().to_json())
-            .unwrap_or(false);
+        // compared as text: serde_json's default number parser may differ from the printed
+        // value in the last bit, so a parsed document can differ from an equal configuration
+        let now = self.config().to_json().to_string();
+        let same = cfg == now;
         if !same {
             return Err(CreepError::State(
                 "the state was saved with a different configuration".into(),
@@ -186,6 +187,16 @@ impl Model {
         }
         let init = flags & 1 != 0;
         let reversed = flags & 2 != 0;
+        // a state is checked like inputs: a NaN or infinite value would poison every later step
+        if !time.is_finite() {
+            return Err(CreepError::State(format!("time = {time} s is not finite")));
+        }
+        inputs
+            .validate()
+            .map_err(|e| CreepError::State(format!("inputs of the state: {e}")))?;
+        if let Some(x) = out.to_array().iter().find(|x| !x.is_finite()) {
+            return Err(CreepError::State(format!("an output of the state is {x}")));
+        }
         match self {
             Model::Polach {
                 inputs: i,
@@ -219,6 +230,12 @@ impl Model {
                 let mut st = Vec::with_capacity(nb);
                 for _ in 0..nb {
                     let x: [f64; 7] = [r.f()?, r.f()?, r.f()?, r.f()?, r.f()?, r.f()?, r.f()?];
+                    if x.iter().any(|v| !v.is_finite()) {
+                        return Err(CreepError::State(format!(
+                            "bristle {} of the state holds a non-finite value ({x:?})",
+                            st.len()
+                        )));
+                    }
                     let regime = match r.b()? {
                         0 => Regime::Elastic,
                         1 => Regime::Plastic,
@@ -239,6 +256,12 @@ impl Model {
                     let mut a = [0.0; N_KERNEL];
                     for v in a.iter_mut() {
                         *v = r.f()?;
+                        if !v.is_finite() {
+                            return Err(CreepError::State(format!(
+                                "heat history {} of the state holds {v}",
+                                acc.len()
+                            )));
+                        }
                     }
                     acc.push(a);
                 }

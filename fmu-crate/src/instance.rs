@@ -58,6 +58,75 @@ pub struct LogMsg {
     pub text: String,
 }
 
+/// Largest configuration file accepted, bytes.
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+/// Reads a configuration file: a regular file (after following links) of at most
+/// [`MAX_CONFIG_BYTES`]; anything else (FIFO, device, directory, socket) is refused without
+/// reading from it, so it can neither block nor exhaust memory.
+pub fn read_config(path: &Path) -> Result<Config, String> {
+    use std::io::Read;
+    let shown = path.display();
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read '{shown}': {e}"))?;
+    if !meta.is_file() {
+        return Err(format!(
+            "'{shown}' is not a regular file (a directory, FIFO, device or socket); give a JSON file"
+        ));
+    }
+    if meta.len() > MAX_CONFIG_BYTES {
+        return Err(format!(
+            "'{shown}' has {} bytes; a configuration file may have at most {MAX_CONFIG_BYTES} bytes (1 MiB)",
+            meta.len()
+        ));
+    }
+    let f = std::fs::File::open(path).map_err(|e| format!("cannot read '{shown}': {e}"))?;
+    let mut text = String::new();
+    // the limit holds even if the file grows between the check and the read
+    f.take(MAX_CONFIG_BYTES + 1)
+        .read_to_string(&mut text)
+        .map_err(|e| format!("cannot read '{shown}': {e}"))?;
+    if text.len() as u64 > MAX_CONFIG_BYTES {
+        return Err(format!(
+            "'{shown}' grew beyond {MAX_CONFIG_BYTES} bytes while it was read"
+        ));
+    }
+    Config::from_json_str(&text, &shown.to_string()).map_err(|e| e.to_string())
+}
+
+/// A value of an fmi2Set* call.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// fmi2Real.
+    Real(f64),
+    /// fmi2Integer.
+    Integer(i32),
+    /// fmi2Boolean.
+    Boolean(bool),
+    /// fmi2String.
+    String(String),
+}
+
+impl Value {
+    /// Base type of the value.
+    pub fn kind(&self) -> Kind {
+        match self {
+            Value::Real(_) => Kind::Real,
+            Value::Integer(_) => Kind::Integer,
+            Value::Boolean(_) => Kind::Boolean,
+            Value::String(_) => Kind::String,
+        }
+    }
+
+    fn show(&self) -> String {
+        match self {
+            Value::Real(x) => x.to_string(),
+            Value::Integer(x) => x.to_string(),
+            Value::Boolean(x) => x.to_string(),
+            Value::String(x) => format!("'{x}'"),
+        }
+    }
+}
+
 /// Parameter settings as the importer gave them; everything not given comes from the
 /// preset or configuration file.
 #[derive(Clone, Debug, PartialEq)]
@@ -115,6 +184,82 @@ pub struct Snapshot {
     pub cfg: Option<Config>,
     /// The core model (None before initialization).
     pub model: Option<Model>,
+}
+
+/// The first non-finite output, as `name = value`.
+fn non_finite(o: &Outputs) -> Option<String> {
+    const NAMES: [&str; 13] = [
+        "Fx",
+        "Fy",
+        "Mz",
+        "f",
+        "T_max",
+        "T_mean",
+        "P_fric",
+        "frac_elastic",
+        "frac_plastic",
+        "frac_sliding",
+        "a",
+        "b",
+        "p0",
+    ];
+    let a = o.to_array();
+    a.iter()
+        .position(|x| !x.is_finite())
+        .map(|i| format!("{} = {}", NAMES[i], a[i]))
+}
+
+/// Checks a snapshot like the inputs and parameters of set calls: a deserialized state with
+/// a NaN time, an infinite creepage or an out-of-range parameter is refused, not restored.
+pub fn validate_snapshot(s: &Snapshot) -> Result<(), String> {
+    if !s.time.is_finite() {
+        return Err(format!("time = {} s is not finite", s.time));
+    }
+    for (i, x) in s.inputs.iter().enumerate() {
+        if !x.is_finite() {
+            return Err(format!(
+                "input {} = {x} is not finite",
+                vars::INPUT_NAMES[i]
+            ));
+        }
+    }
+    core_inputs(&s.inputs)
+        .validate()
+        .map_err(|e| format!("inputs: {e}"))?;
+    let st = &s.settings;
+    let mut scratch = params::Params::default();
+    for (p, x) in &st.params {
+        scratch
+            .set(*p, *x)
+            .map_err(|e| format!("parameters: {e}"))?;
+    }
+    if !(0..=2).contains(&st.geometry) {
+        return Err(format!("geometry = {} (must be 0, 1 or 2)", st.geometry));
+    }
+    for (i, g) in st.geo.iter().enumerate() {
+        if let Some(x) = g {
+            if !(x.is_finite() && *x > 0.0) {
+                return Err(format!("geometry value {i} = {x} (must be finite and > 0)"));
+            }
+        }
+    }
+    let grid_ok = |n: Option<usize>, lo: usize, hi: usize| n.is_none_or(|n| (lo..=hi).contains(&n));
+    if !grid_ok(st.nx, 2, 2000) || !grid_ok(st.ny, 1, 1000) {
+        return Err(format!("grid {:?} x {:?} out of range", st.nx, st.ny));
+    }
+    ModelKind::parse(&st.model).map_err(|e| format!("model: {e}"))?;
+    if !st.preset.is_empty() {
+        Config::preset(&st.preset).map_err(|e| format!("preset: {e}"))?;
+    }
+    if let Some(m) = &s.model {
+        if !m.time().is_finite() {
+            return Err(format!("model time = {} s is not finite", m.time()));
+        }
+        if let Some(x) = m.outputs().to_array().iter().find(|x| !x.is_finite()) {
+            return Err(format!("an output of the model is {x}"));
+        }
+    }
+    Ok(())
 }
 
 /// One instance of the contact FMU.
@@ -465,6 +610,12 @@ impl Instance {
                 "fmi2DoStep: step of {h} s from t = {t} s failed: {e}"
             ));
         }
+        if let Some(bad) = non_finite(&model.outputs()) {
+            self.phase = Phase::Error;
+            return self.error(format!(
+                "fmi2DoStep: the step of {h} s from t = {t} s gave non-finite outputs ({bad}); the instance is in the error state (fmi2Reset, or fmi2SetFMUstate to an earlier state)"
+            ));
+        }
         self.time = t + h;
         self.drain_model_warnings("fmi2DoStep")
     }
@@ -572,8 +723,9 @@ impl Instance {
                     s.preset, s.config_file
                 ));
             }
-            let path = self.config_path(&s.config_file)?;
-            let c = Config::from_file(&path).map_err(|e| format!("config_file: {e}"))?;
+            let c = self
+                .read_config_file(&s.config_file)
+                .map_err(|e| format!("config_file: {e}"))?;
             check_model(&c, &format!("config_file '{}'", s.config_file))?;
             Ok(c)
         } else if !s.preset.is_empty() {
@@ -663,6 +815,11 @@ impl Instance {
     /// The outputs for the current inputs: after initialization those of the last step; in
     /// initialization mode, the steady state of the current inputs (the model is built).
     fn current_outputs(&mut self) -> Result<Outputs, String> {
+        if self.phase == Phase::Error {
+            return Err(
+                "the instance is in the error state (after a failed step); call fmi2Reset or fmi2SetFMUstate".into(),
+            );
+        }
         if self.phase != Phase::Initialization {
             return self
                 .model
@@ -683,6 +840,12 @@ impl Instance {
             let inputs = core_inputs(&self.inputs);
             if let Some(m) = self.model.as_mut() {
                 m.steady(&inputs).map_err(|e| e.to_string())?;
+                if let Some(bad) = non_finite(&m.outputs()) {
+                    self.model = None;
+                    return Err(format!(
+                        "the steady state of these parameters and inputs is not finite ({bad}); the model cannot be used with them"
+                    ));
+                }
             }
             self.model_current = true;
             self.restored = false;
@@ -735,76 +898,6 @@ impl Instance {
         }
     }
 
-    /// fmi2SetReal of one variable.
-    pub fn set_real(&mut self, vr: u32, x: f64) -> Status {
-        const F: &str = "fmi2SetReal";
-        let v = match self.var(F, vr, Kind::Real) {
-            Ok(v) => v,
-            Err(s) => return s,
-        };
-        if let Err(s) = self.check_settable(F, &v) {
-            return s;
-        }
-        match v.slot {
-            Slot::Input(i) => {
-                if !x.is_finite() {
-                    return self.error(format!(
-                        "{F}: {} = {x} rejected (value unchanged): inputs must be finite",
-                        v.name
-                    ));
-                }
-                let k = input_index(i);
-                let mut cand = self.inputs;
-                cand[k] = x;
-                if let Err(e) = core_inputs(&cand).validate() {
-                    return self.error(format!(
-                        "{F}: {} = {x} rejected (value unchanged): {e}",
-                        v.name
-                    ));
-                }
-                self.inputs = cand;
-                self.model_current = false;
-                match i {
-                    In::Cx | In::Cy if x.abs() > 1.0 => self.warn(format!(
-                        "{F}: {} = {x} ({:.0} %): |{}| > 1 is beyond the range of rolling contact (the wheel slips more than it rolls); computed anyway",
-                        v.name,
-                        100.0 * x,
-                        v.name
-                    )),
-                    In::Fn if x < 0.0 => self.warn(format!(
-                        "{F}: FN = {x} N < 0: the wheel has lifted off; treated as FN = 0 (all forces zero)"
-                    )),
-                    _ => Status::Ok,
-                }
-            }
-            Slot::Param(p) => {
-                let mut scratch = creep_core::params::Params::default();
-                if let Err(e) = scratch.set(p, x) {
-                    return self.error(format!(
-                        "{F}: {} = {x} rejected (value unchanged): {e}",
-                        v.name
-                    ));
-                }
-                self.settings.params.insert(p, x);
-                self.settings_changed();
-                Status::Ok
-            }
-            Slot::Geo(g) => {
-                if !(x.is_finite() && x > 0.0) {
-                    let unit = v.unit.unwrap_or("");
-                    return self.error(format!(
-                        "{F}: {} = {x} rejected (value unchanged): must be finite and > 0 {unit}",
-                        v.name
-                    ));
-                }
-                self.settings.geo[geo_index(g)] = Some(x);
-                self.settings_changed();
-                Status::Ok
-            }
-            _ => self.error(format!("{F}: {} is not settable as Real", v.name)),
-        }
-    }
-
     /// fmi2GetInteger of one variable.
     pub fn get_integer(&mut self, vr: u32) -> Result<i32, Status> {
         const F: &str = "fmi2GetInteger";
@@ -823,33 +916,6 @@ impl Instance {
         }
     }
 
-    /// fmi2SetInteger of one variable.
-    pub fn set_integer(&mut self, vr: u32, x: i32) -> Status {
-        const F: &str = "fmi2SetInteger";
-        let v = match self.var(F, vr, Kind::Integer) {
-            Ok(v) => v,
-            Err(s) => return s,
-        };
-        if let Err(s) = self.check_settable(F, &v) {
-            return s;
-        }
-        let (lo, hi) = (v.min.unwrap_or(0.0) as i32, v.max.unwrap_or(1e9) as i32);
-        if x < lo || x > hi {
-            return self.error(format!(
-                "{F}: {} = {x} rejected (value unchanged): must be within [{lo}, {hi}] ({})",
-                v.name, v.description
-            ));
-        }
-        match v.slot {
-            Slot::GeometryMode => self.settings.geometry = x,
-            Slot::Nx => self.settings.nx = Some(x as usize),
-            Slot::Ny => self.settings.ny = Some(x as usize),
-            _ => return self.error(format!("{F}: {} is not settable as Integer", v.name)),
-        }
-        self.settings_changed();
-        Status::Ok
-    }
-
     /// fmi2GetBoolean of one variable.
     pub fn get_boolean(&mut self, vr: u32) -> Result<bool, Status> {
         const F: &str = "fmi2GetBoolean";
@@ -865,24 +931,6 @@ impl Instance {
             Ok(c) => Ok(c.effects.has(e)),
             Err(err) => Err(self.error(format!("{F}: {}: configuration error: {err}", v.name))),
         }
-    }
-
-    /// fmi2SetBoolean of one variable.
-    pub fn set_boolean(&mut self, vr: u32, x: bool) -> Status {
-        const F: &str = "fmi2SetBoolean";
-        let v = match self.var(F, vr, Kind::Boolean) {
-            Ok(v) => v,
-            Err(s) => return s,
-        };
-        if let Err(s) = self.check_settable(F, &v) {
-            return s;
-        }
-        let Slot::Effect(e) = v.slot else {
-            return self.error(format!("{F}: {} is not settable as Boolean", v.name));
-        };
-        self.settings.effects.insert(e, x);
-        self.settings_changed();
-        Status::Ok
     }
 
     /// fmi2GetString of one variable.
@@ -906,53 +954,175 @@ impl Instance {
         })
     }
 
+    /// fmi2SetReal of one variable.
+    pub fn set_real(&mut self, vr: u32, x: f64) -> Status {
+        self.set_values("fmi2SetReal", &[(vr, Value::Real(x))])
+    }
+
+    /// fmi2SetInteger of one variable.
+    pub fn set_integer(&mut self, vr: u32, x: i32) -> Status {
+        self.set_values("fmi2SetInteger", &[(vr, Value::Integer(x))])
+    }
+
+    /// fmi2SetBoolean of one variable.
+    pub fn set_boolean(&mut self, vr: u32, x: bool) -> Status {
+        self.set_values("fmi2SetBoolean", &[(vr, Value::Boolean(x))])
+    }
+
     /// fmi2SetString of one variable.
     pub fn set_string(&mut self, vr: u32, x: &str) -> Status {
-        const F: &str = "fmi2SetString";
-        let v = match self.var(F, vr, Kind::String) {
-            Ok(v) => v,
-            Err(s) => return s,
-        };
-        if let Err(s) = self.check_settable(F, &v) {
-            return s;
-        }
-        match v.slot {
-            Slot::Model => {
-                if let Err(e) = ModelKind::parse(x) {
-                    return self.error(format!(
-                        "{F}: model = '{x}' rejected (value unchanged): {e}"
-                    ));
-                }
-                self.settings.model = x.to_string();
-                self.settings.model_set = true;
+        self.set_values("fmi2SetString", &[(vr, Value::String(x.to_string()))])
+    }
+
+    /// One fmi2Set* call: every value is checked first; if any is refused, none is applied
+    /// (each refusal is logged) and the instance is unchanged.
+    pub fn set_values(&mut self, func: &str, items: &[(u32, Value)]) -> Status {
+        let mut vars = Vec::with_capacity(items.len());
+        let mut refused = 0;
+        for (vr, x) in items {
+            match self.check_value(func, *vr, x) {
+                Ok(v) => vars.push(v),
+                Err(_) => refused += 1,
             }
-            Slot::Preset => {
+        }
+        if refused > 0 {
+            if items.len() > 1 {
+                self.error(format!(
+                    "{func}: {refused} of {} values refused; none of the {} values of this call was applied",
+                    items.len(),
+                    items.len()
+                ));
+            }
+            return Status::Error;
+        }
+        let mut st = Status::Ok;
+        for (v, (_, x)) in vars.iter().zip(items) {
+            st = st.max(self.apply_value(func, v, x));
+        }
+        st
+    }
+
+    /// Checks one value of a set call without changing anything; logs the reason of a refusal.
+    fn check_value(&mut self, func: &str, vr: u32, x: &Value) -> Result<Var, Status> {
+        let v = self.var(func, vr, x.kind())?;
+        self.check_settable(func, &v)?;
+        let refuse = |inst: &mut Self, why: String| -> Result<Var, Status> {
+            Err(inst.error(format!(
+                "{func}: {} = {} rejected (value unchanged): {why}",
+                v.name,
+                x.show()
+            )))
+        };
+        match (v.slot, x) {
+            (Slot::Input(i), Value::Real(x)) => {
+                if !x.is_finite() {
+                    return refuse(self, "inputs must be finite".into());
+                }
+                let mut cand = self.inputs;
+                cand[input_index(i)] = *x;
+                if let Err(e) = core_inputs(&cand).validate() {
+                    return refuse(self, e.to_string());
+                }
+            }
+            (Slot::Param(p), Value::Real(x)) => {
+                let mut scratch = creep_core::params::Params::default();
+                if let Err(e) = scratch.set(p, *x) {
+                    return refuse(self, e.to_string());
+                }
+            }
+            (Slot::Geo(_), Value::Real(x)) => {
+                if !(x.is_finite() && *x > 0.0) {
+                    let unit = v.unit.unwrap_or("");
+                    return refuse(self, format!("must be finite and > 0 {unit}"));
+                }
+            }
+            (Slot::GeometryMode | Slot::Nx | Slot::Ny, Value::Integer(x)) => {
+                let (lo, hi) = (v.min.unwrap_or(0.0) as i32, v.max.unwrap_or(1e9) as i32);
+                if *x < lo || *x > hi {
+                    return refuse(
+                        self,
+                        format!("must be within [{lo}, {hi}] ({})", v.description),
+                    );
+                }
+            }
+            (Slot::Effect(_), Value::Boolean(_)) => {}
+            (Slot::Model, Value::String(x)) => {
+                if let Err(e) = ModelKind::parse(x) {
+                    return refuse(self, e.to_string());
+                }
+            }
+            (Slot::Preset, Value::String(x)) => {
                 if !x.is_empty() {
                     if let Err(e) = Config::preset(x) {
-                        return self.error(format!(
-                            "{F}: preset = '{x}' rejected (value unchanged): {e}"
-                        ));
+                        return refuse(self, e.to_string());
                     }
                 }
-                self.settings.preset = x.to_string();
             }
-            Slot::ConfigFile => {
+            (Slot::ConfigFile, Value::String(x)) => {
                 if !x.is_empty() {
-                    let res = self
-                        .config_path(x)
-                        .and_then(|p| Config::from_file(&p).map_err(|e| e.to_string()));
-                    if let Err(e) = res {
-                        return self.error(format!(
-                            "{F}: config_file = '{x}' rejected (value unchanged): {e}"
-                        ));
+                    if let Err(e) = self.read_config_file(x) {
+                        return refuse(self, e);
                     }
                 }
-                self.settings.config_file = x.to_string();
             }
-            _ => return self.error(format!("{F}: {} is not settable as String", v.name)),
+            _ => {
+                return Err(self.error(format!(
+                    "{func}: {} is not settable as {}",
+                    v.name,
+                    x.kind().name()
+                )))
+            }
+        }
+        Ok(v)
+    }
+
+    /// Applies one value that [`Self::check_value`] accepted; returns warnings.
+    fn apply_value(&mut self, func: &str, v: &Var, x: &Value) -> Status {
+        match (v.slot, x) {
+            (Slot::Input(i), Value::Real(x)) => {
+                let x = *x;
+                self.inputs[input_index(i)] = x;
+                self.model_current = false;
+                return match i {
+                    In::Cx | In::Cy if x.abs() > 1.0 => self.warn(format!(
+                        "{func}: {} = {x} ({:.0} %): |{}| > 1 is beyond the range of rolling contact (the wheel slips more than it rolls); computed anyway",
+                        v.name,
+                        100.0 * x,
+                        v.name
+                    )),
+                    In::Fn if x < 0.0 => self.warn(format!(
+                        "{func}: FN = {x} N < 0: the wheel has lifted off; treated as FN = 0 (all forces zero)"
+                    )),
+                    _ => Status::Ok,
+                };
+            }
+            (Slot::Param(p), Value::Real(x)) => {
+                self.settings.params.insert(p, *x);
+            }
+            (Slot::Geo(g), Value::Real(x)) => self.settings.geo[geo_index(g)] = Some(*x),
+            (Slot::GeometryMode, Value::Integer(x)) => self.settings.geometry = *x,
+            (Slot::Nx, Value::Integer(x)) => self.settings.nx = Some(*x as usize),
+            (Slot::Ny, Value::Integer(x)) => self.settings.ny = Some(*x as usize),
+            (Slot::Effect(e), Value::Boolean(x)) => {
+                self.settings.effects.insert(e, *x);
+            }
+            (Slot::Model, Value::String(x)) => {
+                self.settings.model = x.clone();
+                self.settings.model_set = true;
+            }
+            (Slot::Preset, Value::String(x)) => self.settings.preset = x.clone(),
+            (Slot::ConfigFile, Value::String(x)) => self.settings.config_file = x.clone(),
+            _ => return self.error(format!("{func}: {} cannot be set", v.name)),
         }
         self.settings_changed();
         Status::Ok
+    }
+
+    /// Reads and parses a configuration file: only a regular file of at most
+    /// [`MAX_CONFIG_BYTES`] (a FIFO, a device or a directory is refused before opening it).
+    pub fn read_config_file(&self, file: &str) -> Result<Config, String> {
+        let path = self.config_path(file)?;
+        read_config(&path)
     }
 
     /// fmi2GetRealStatus(fmi2LastSuccessfulTime).
@@ -960,7 +1130,18 @@ impl Instance {
         self.time
     }
 
-    /// fmi2GetFMUstate: a copy of everything the instance holds.
+    /// fmi2GetFMUstate: a copy of everything the instance holds (refused in the error
+    /// state, whose outputs are not valid).
+    pub fn try_get_state(&mut self) -> Result<Snapshot, Status> {
+        if self.phase == Phase::Error {
+            return Err(self.error(
+                "fmi2GetFMUstate: the instance is in the error state; its state is not saved (fmi2Reset or fmi2SetFMUstate first)".into(),
+            ));
+        }
+        Ok(self.get_state())
+    }
+
+    /// A copy of everything the instance holds.
     pub fn get_state(&mut self) -> Snapshot {
         let cfg = self
             .model
@@ -979,6 +1160,11 @@ impl Instance {
     /// fmi2SetFMUstate: restores a snapshot.
     pub fn set_state(&mut self, s: &Snapshot) -> Status {
         const F: &str = "fmi2SetFMUstate";
+        if let Err(e) = validate_snapshot(s) {
+            return self.error(format!(
+                "{F}: the state is refused ({e}); the instance is unchanged"
+            ));
+        }
         if s.model.is_none() && matches!(self.phase, Phase::StepComplete | Phase::Terminated) {
             return self.error(format!(
                 "{F}: the state was taken before initialization and cannot be set in state {}",

@@ -8,7 +8,7 @@
 //! the bytes of `creep_core::Model::save_state` (the whole bristle grid and heat histories).
 //! Strings are u32 length + UTF-8. Nothing follows the last field.
 
-use crate::instance::{effect_index, effect_of, param_of, Settings, Snapshot};
+use crate::instance::{effect_index, effect_of, param_of, validate_snapshot, Settings, Snapshot};
 use creep_core::effects::EffectSet;
 use creep_core::params::{self, Params};
 use creep_core::{Bound, Config, Geometry, Grid, Model, ModelKind};
@@ -298,13 +298,15 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     if r.p != data.len() {
         return Err(format!("{} trailing bytes", data.len() - r.p));
     }
-    Ok(Snapshot {
+    let snap = Snapshot {
         settings: st,
         inputs,
         time,
         cfg,
         model,
-    })
+    };
+    validate_snapshot(&snap).map_err(|e| format!("invalid state: {e}"))?;
+    Ok(snap)
 }
 
 #[cfg(test)]
