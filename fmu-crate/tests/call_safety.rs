@@ -186,7 +186,7 @@ fn deserialized_states_are_checked_like_inputs() {
     for (what, at, x) in [
         ("time", 12, f64::NAN),
         ("cx", 20, f64::INFINITY),
-        ("v", 20 + 3 * 8, -5.0),
+        ("v", 20 + 3 * 8, -5000.0), // negative speeds roll backwards; beyond 1000 m/s is invalid
         ("FN", 20 + 4 * 8, f64::NAN),
     ] {
         let mut b = good.clone();
