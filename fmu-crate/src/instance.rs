@@ -202,7 +202,7 @@ impl Value {
 
 /// Parameter settings as the importer gave them; everything not given comes from the
 /// preset or configuration file.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Settings {
     /// Model family name.
     pub model: String,
@@ -226,24 +226,6 @@ pub struct Settings {
     pub geometry: i32,
     /// Geometry values set by the importer (a_ref, b_ref, FN_ref, Rx, Ry), SI.
     pub geo: [Option<f64>; 5],
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Settings {
-            model: String::new(),
-            model_set: false,
-            preset: String::new(),
-            config_file: String::new(),
-            columns: String::new(),
-            params: BTreeMap::new(),
-            effects: BTreeMap::new(),
-            nx: None,
-            ny: None,
-            geometry: 0,
-            geo: [None; 5],
-        }
-    }
 }
 
 /// Everything an FMU state holds: settings, inputs, time and the whole core model
