@@ -277,7 +277,7 @@ pub fn extras_for(
     if cfg.formulas.is_empty() && cfg.custom.is_empty() {
         return Ok(None);
     }
-    let map = parse_columns(&columns)?;
+    let map = parse_columns(columns)?;
     let mut out = Vec::new();
     for name in columns_used(cfg) {
         let Some((_, src)) = map.iter().find(|(n, _)| *n == name) else {
