@@ -1,6 +1,6 @@
 //! One FMU instance as a safe state machine: settings, inputs, the core model, FMI call rules, and messages for the logger.
 
-use crate::vars::{self, Causality, Geo, In, Kind, Slot, Start, Var};
+use crate::vars::{self, Causality, Geo, In, Kind, Slot, Start, Var, N_AUX, N_INPUTS};
 use creep_core::effects::{self, Effect};
 use creep_core::params::{self, P};
 use creep_core::{Config, Geometry, Grid, Inputs, Model, ModelKind, Outputs};
@@ -93,6 +93,79 @@ pub fn read_config(path: &Path) -> Result<Config, String> {
     Config::from_json_str(&text, &shown.to_string()).map_err(|e| e.to_string())
 }
 
+/// Where a data column's value comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ColumnSource {
+    /// Auxiliary input (0-based: aux1 = 0).
+    Aux(usize),
+    /// A constant.
+    Const(f64),
+}
+
+/// Parses the `columns` parameter: `NAME=auxK` or `NAME=VALUE`, comma or semicolon separated.
+pub fn parse_columns(text: &str) -> Result<Vec<(String, ColumnSource)>, String> {
+    let mut out: Vec<(String, ColumnSource)> = Vec::new();
+    for item in text.split([',', ';']) {
+        let item = item.trim();
+        if item.is_empty() {
+            continue;
+        }
+        let Some((name, src)) = item.split_once('=') else {
+            return Err(format!("'{item}': expected NAME=auxK or NAME=VALUE"));
+        };
+        let (name, src) = (name.trim(), src.trim());
+        if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_') {
+            return Err(format!(
+                "'{item}': the column name must be letters, digits or '_'"
+            ));
+        }
+        if out.iter().any(|(n, _)| n == name) {
+            return Err(format!("column '{name}' is mapped twice"));
+        }
+        let source = if let Some(k) = src.strip_prefix("aux") {
+            match k.parse::<usize>() {
+                Ok(k) if (1..=N_AUX).contains(&k) => ColumnSource::Aux(k - 1),
+                _ => {
+                    return Err(format!(
+                        "'{item}': there are the auxiliary inputs aux1 ... aux{N_AUX}"
+                    ))
+                }
+            }
+        } else {
+            match src.parse::<f64>() {
+                Ok(x) if x.is_finite() => ColumnSource::Const(x),
+                _ => {
+                    return Err(format!(
+                        "'{item}': '{src}' is neither an auxiliary input (aux1 ... aux{N_AUX}) nor a finite number"
+                    ))
+                }
+            }
+        };
+        out.push((name.to_string(), source));
+    }
+    Ok(out)
+}
+
+/// The data columns a configuration's formula and custom effects read.
+pub fn columns_used(cfg: &Config) -> Vec<String> {
+    let mut v: Vec<String> = Vec::new();
+    let names = cfg
+        .formulas
+        .iter()
+        .flat_map(|f| f.columns.iter().cloned())
+        .chain(
+            cfg.custom
+                .iter()
+                .flat_map(|c| c.effect.columns().iter().map(|s| s.to_string())),
+        );
+    for n in names {
+        if !v.contains(&n) {
+            v.push(n);
+        }
+    }
+    v
+}
+
 /// A value of an fmi2Set* call.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {
@@ -129,7 +202,7 @@ impl Value {
 
 /// Parameter settings as the importer gave them; everything not given comes from the
 /// preset or configuration file.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Settings {
     /// Model family name.
     pub model: String,
@@ -139,6 +212,8 @@ pub struct Settings {
     pub preset: String,
     /// Configuration file ("" = none).
     pub config_file: String,
+    /// Data columns of formula/custom effects ("" = none), see [`parse_columns`].
+    pub columns: String,
     /// Parameters set by the importer (display units).
     pub params: BTreeMap<P, f64>,
     /// Effect switches set by the importer.
@@ -153,23 +228,6 @@ pub struct Settings {
     pub geo: [Option<f64>; 5],
 }
 
-impl Default for Settings {
-    fn default() -> Self {
-        Settings {
-            model: "ecf".into(),
-            model_set: false,
-            preset: String::new(),
-            config_file: String::new(),
-            params: BTreeMap::new(),
-            effects: BTreeMap::new(),
-            nx: None,
-            ny: None,
-            geometry: 0,
-            geo: [None; 5],
-        }
-    }
-}
-
 /// Everything an FMU state holds: settings, inputs, time and the whole core model
 /// (bristle grid and heat histories).
 #[derive(Clone, Debug)]
@@ -177,7 +235,7 @@ pub struct Snapshot {
     /// Parameter settings.
     pub settings: Settings,
     /// Input values as set (FN not clamped).
-    pub inputs: [f64; 6],
+    pub inputs: [f64; N_INPUTS],
     /// Communication time, s.
     pub time: f64,
     /// Resolved configuration (None if it was not resolved when the state was taken).
@@ -207,6 +265,34 @@ fn non_finite(o: &Outputs) -> Option<String> {
     a.iter()
         .position(|x| !x.is_finite())
         .map(|i| format!("{} = {}", NAMES[i], a[i]))
+}
+
+/// The data column values of a configuration with formula or custom effects (None
+/// without them): each column it reads, from its auxiliary input or constant.
+pub fn extras_for(
+    cfg: &Config,
+    columns: &str,
+    inputs: &[f64; N_INPUTS],
+) -> Result<Option<Vec<(String, f64)>>, String> {
+    if cfg.formulas.is_empty() && cfg.custom.is_empty() {
+        return Ok(None);
+    }
+    let map = parse_columns(columns)?;
+    let mut out = Vec::new();
+    for name in columns_used(cfg) {
+        let Some((_, src)) = map.iter().find(|(n, _)| *n == name) else {
+            return Err(format!(
+                "the configuration's formula or custom effects read the data column '{name}', which the parameter columns does not map (columns = '{}'); set e.g. columns = \"{name}=aux1\" and feed the input aux1, or columns = \"{name}=50\" for a constant",
+                columns
+            ));
+        };
+        let x = match *src {
+            ColumnSource::Aux(k) => inputs[6 + k],
+            ColumnSource::Const(x) => x,
+        };
+        out.push((name, x));
+    }
+    Ok(Some(out))
 }
 
 /// Checks a snapshot like the inputs and parameters of set calls: a deserialized state with
@@ -247,7 +333,10 @@ pub fn validate_snapshot(s: &Snapshot) -> Result<(), String> {
     if !grid_ok(st.nx, 2, 2000) || !grid_ok(st.ny, 1, 1000) {
         return Err(format!("grid {:?} x {:?} out of range", st.nx, st.ny));
     }
-    ModelKind::parse(&st.model).map_err(|e| format!("model: {e}"))?;
+    if !st.model.is_empty() {
+        ModelKind::parse(&st.model).map_err(|e| format!("model: {e}"))?;
+    }
+    parse_columns(&st.columns).map_err(|e| format!("columns: {e}"))?;
     if !st.preset.is_empty() {
         Config::preset(&st.preset).map_err(|e| format!("preset: {e}"))?;
     }
@@ -270,7 +359,7 @@ pub struct Instance {
     table: Vec<Var>,
     index: HashMap<u32, usize>,
     settings: Settings,
-    inputs: [f64; 6],
+    inputs: [f64; N_INPUTS],
     phase: Phase,
     time: f64,
     cfg: Option<Config>,
@@ -301,11 +390,12 @@ fn input_index(i: In) -> usize {
         In::V => 3,
         In::Fn => 4,
         In::TBulk => 5,
+        In::Aux(k) => 6 + k,
     }
 }
 
 /// The core inputs of FMU input values (FN <= 0 is lift-off: F_N = 0).
-pub fn core_inputs(x: &[f64; 6]) -> Inputs {
+pub fn core_inputs(x: &[f64; N_INPUTS]) -> Inputs {
     Inputs {
         cx: x[0],
         cy: x[1],
@@ -358,7 +448,7 @@ impl Instance {
             table,
             index,
             settings: Settings::default(),
-            inputs: [0.0; 6],
+            inputs: [0.0; N_INPUTS],
             phase: Phase::Instantiated,
             time: 0.0,
             cfg: None,
@@ -602,9 +692,19 @@ impl Instance {
             ));
         }
         let inputs = core_inputs(&self.inputs);
+        let extra = match self.model.as_ref().map(|m| self.extras(m.config())) {
+            Some(Ok(x)) => x,
+            Some(Err(e)) => return self.error(format!("fmi2DoStep: {e}")),
+            None => None,
+        };
         let Some(model) = self.model.as_mut() else {
             return self.error("fmi2DoStep: no model (not initialized)".into());
         };
+        if let Some(x) = &extra {
+            if let Err(e) = model.set_extra(x) {
+                return self.error(format!("fmi2DoStep: {e}"));
+            }
+        }
         if let Err(e) = model.step(h, &inputs) {
             return self.error(format!(
                 "fmi2DoStep: step of {h} s from t = {t} s failed: {e}"
@@ -707,10 +807,21 @@ impl Instance {
         let s = &self.settings;
         let check_model = |c: &Config, what: &str| -> Result<(), String> {
             if s.model_set && c.model.name() != s.model {
+                let of_model: Vec<&str> = creep_core::config::PRESETS
+                    .iter()
+                    .filter(|(n, _)| {
+                        Config::preset(n)
+                            .map(|p| p.model.name() == s.model)
+                            .unwrap_or(false)
+                    })
+                    .map(|(n, _)| *n)
+                    .collect();
                 Err(format!(
-                    "model = '{}' but {what} is a '{}' configuration",
+                    "model = '{}' but {what} is a '{}' configuration: leave model empty (it then follows the preset or file) or choose a configuration of model '{}' (presets: {})",
                     s.model,
-                    c.model.name()
+                    c.model.name(),
+                    s.model,
+                    of_model.join(", ")
                 ))
             } else {
                 Ok(())
@@ -732,8 +843,10 @@ impl Instance {
             let c = Config::preset(&s.preset).map_err(|e| format!("preset: {e}"))?;
             check_model(&c, &format!("preset '{}'", s.preset))?;
             Ok(c)
-        } else {
+        } else if s.model_set {
             Config::for_model(&s.model).map_err(|e| format!("model: {e}"))
+        } else {
+            Config::for_model("ecf").map_err(|e| format!("model: {e}"))
         }
     }
 
@@ -838,7 +951,11 @@ impl Instance {
                 self.model = Some(Model::new(&cfg).map_err(|e| e.to_string())?);
             }
             let inputs = core_inputs(&self.inputs);
+            let extra = self.extras(&cfg)?;
             if let Some(m) = self.model.as_mut() {
+                if let Some(x) = &extra {
+                    m.set_extra(x).map_err(|e| e.to_string())?;
+                }
                 m.steady(&inputs).map_err(|e| e.to_string())?;
                 if let Some(bad) = non_finite(&m.outputs()) {
                     self.model = None;
@@ -851,6 +968,12 @@ impl Instance {
             self.restored = false;
         }
         Ok(self.model.as_ref().map(|m| m.outputs()).unwrap_or_default())
+    }
+
+    /// The data column values of a configuration with formula or custom effects (None
+    /// without them): each column it reads, from its auxiliary input or constant.
+    fn extras(&self, cfg: &Config) -> Result<Option<Vec<(String, f64)>>, String> {
+        extras_for(cfg, &self.settings.columns, &self.inputs)
     }
 
     /// fmi2GetReal of one variable.
@@ -950,6 +1073,7 @@ impl Instance {
                 }
             }
             Slot::Preset => self.settings.preset.clone(),
+            Slot::Columns => self.settings.columns.clone(),
             _ => self.settings.config_file.clone(),
         })
     }
@@ -1044,11 +1168,25 @@ impl Instance {
                         format!("must be within [{lo}, {hi}] ({})", v.description),
                     );
                 }
+                if v.slot == Slot::Nx && *x == 1 {
+                    return refuse(
+                        self,
+                        "a strip needs at least 2 cells: give 0 (from the preset) or 2 ... 2000"
+                            .into(),
+                    );
+                }
             }
             (Slot::Effect(_), Value::Boolean(_)) => {}
             (Slot::Model, Value::String(x)) => {
-                if let Err(e) = ModelKind::parse(x) {
-                    return refuse(self, e.to_string());
+                if !x.is_empty() {
+                    if let Err(e) = ModelKind::parse(x) {
+                        return refuse(self, format!("{e}; or empty: the preset's model"));
+                    }
+                }
+            }
+            (Slot::Columns, Value::String(x)) => {
+                if let Err(e) = parse_columns(x) {
+                    return refuse(self, e);
                 }
             }
             (Slot::Preset, Value::String(x)) => {
@@ -1096,20 +1234,33 @@ impl Instance {
                     _ => Status::Ok,
                 };
             }
+            // a value equal to the start value is 'not set' (an importer writes every start
+            // value; the preset's value must stay in force): see vars::UNSET
             (Slot::Param(p), Value::Real(x)) => {
-                self.settings.params.insert(p, *x);
+                if v.start == Start::Real(*x) {
+                    self.settings.params.remove(&p);
+                } else {
+                    self.settings.params.insert(p, *x);
+                }
             }
-            (Slot::Geo(g), Value::Real(x)) => self.settings.geo[geo_index(g)] = Some(*x),
+            (Slot::Geo(g), Value::Real(x)) => {
+                self.settings.geo[geo_index(g)] = (v.start != Start::Real(*x)).then_some(*x)
+            }
             (Slot::GeometryMode, Value::Integer(x)) => self.settings.geometry = *x,
-            (Slot::Nx, Value::Integer(x)) => self.settings.nx = Some(*x as usize),
-            (Slot::Ny, Value::Integer(x)) => self.settings.ny = Some(*x as usize),
+            (Slot::Nx, Value::Integer(x)) => self.settings.nx = (*x > 0).then_some(*x as usize),
+            (Slot::Ny, Value::Integer(x)) => self.settings.ny = (*x > 0).then_some(*x as usize),
             (Slot::Effect(e), Value::Boolean(x)) => {
-                self.settings.effects.insert(e, *x);
+                if v.start == Start::Boolean(*x) {
+                    self.settings.effects.remove(&e);
+                } else {
+                    self.settings.effects.insert(e, *x);
+                }
             }
             (Slot::Model, Value::String(x)) => {
                 self.settings.model = x.clone();
-                self.settings.model_set = true;
+                self.settings.model_set = !x.is_empty();
             }
+            (Slot::Columns, Value::String(x)) => self.settings.columns = x.clone(),
             (Slot::Preset, Value::String(x)) => self.settings.preset = x.clone(),
             (Slot::ConfigFile, Value::String(x)) => self.settings.config_file = x.clone(),
             _ => return self.error(format!("{func}: {} cannot be set", v.name)),

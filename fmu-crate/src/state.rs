@@ -1,14 +1,19 @@
 //! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
 //!
-//! Layout (version 1): magic `ECFFMUST`, u32 version, f64 time, 6 × f64 inputs, settings
-//! (model, model_set, preset, config_file, set parameters as (u32 registry index, f64),
+//! Layout (version 2): magic `ECFFMUST`, u32 version, f64 time, 10 × f64 inputs (cx, cy,
+//! spin, v, FN, T_bulk, aux1..aux4), settings (model, model_set, preset, config_file, columns,
+//! set parameters as (u32 registry index, f64),
 //! set effects as (u8 catalogue index, u8), nx, ny as u32 (0 = not set), i32 geometry,
 //! 5 × (u8 present, f64)), u8 + configuration (u8 model, u32 effect bits, u32 count + f64
-//! per parameter, u8 bound, u32 nx, u32 ny, u8 geometry kind + 3 × f64), u8 + u32 length +
+//! per parameter, u8 bound, u32 nx, u32 ny, u8 geometry kind + 3 × f64, preset name, u8 +
+//! (if formula or custom effects) the configuration as JSON and, per formula then custom
+//! effect, u32 count + f64 parameter values), u8 + u32 length +
 //! the bytes of `creep_core::Model::save_state` (the whole bristle grid and heat histories).
 //! Strings are u32 length + UTF-8. Nothing follows the last field.
 
-use crate::instance::{effect_index, effect_of, param_of, validate_snapshot, Settings, Snapshot};
+use crate::instance::{
+    effect_index, effect_of, extras_for, param_of, validate_snapshot, Settings, Snapshot,
+};
 use creep_core::effects::EffectSet;
 use creep_core::params::{self, Params};
 use creep_core::{Bound, Config, Geometry, Grid, Model, ModelKind};
@@ -16,7 +21,7 @@ use creep_core::{Bound, Config, Geometry, Grid, Model, ModelKind};
 /// Magic bytes at the start of a serialized FMU state.
 pub const MAGIC: &[u8; 8] = b"ECFFMUST";
 /// Format version written by this build.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 struct W(Vec<u8>);
 
@@ -121,6 +126,25 @@ fn put_config(w: &mut W, c: &Config) {
         w.f64(x);
     }
     w.str(&c.preset);
+    // formula and custom effects: the configuration as JSON (for their expressions and
+    // names), their parameter values bit-exact beside it
+    let has_mod = !(c.formulas.is_empty() && c.custom.is_empty());
+    w.u8(has_mod as u8);
+    if has_mod {
+        w.str(&c.to_json().to_string());
+        for f in &c.formulas {
+            w.u32(f.params.len() as u32);
+            for p in &f.params {
+                w.f64(p.1);
+            }
+        }
+        for cu in &c.custom {
+            w.u32(cu.params.len() as u32);
+            for x in &cu.params {
+                w.f64(*x);
+            }
+        }
+    }
 }
 
 fn get_config(r: &mut R) -> Result<Config, String> {
@@ -172,6 +196,49 @@ fn get_config(r: &mut R) -> Result<Config, String> {
         b => return Err(format!("bad geometry byte {b}")),
     };
     let preset = r.str()?;
+    let (mut formulas, mut custom) = (Vec::new(), Vec::new());
+    if r.bool()? {
+        let json = r.str()?;
+        let full = Config::from_json_str(&json, "FMU state").map_err(|e| e.to_string())?;
+        formulas = full.formulas;
+        custom = full.custom;
+        for f in formulas.iter_mut() {
+            let n = r.u32()? as usize;
+            if n != f.params.len() {
+                return Err(format!(
+                    "formula effect {}: {n} parameters, the expression has {}",
+                    f.name,
+                    f.params.len()
+                ));
+            }
+            for k in 0..n {
+                let x = r.f64()?;
+                if !x.is_finite() {
+                    return Err(format!("formula effect {}: parameter {k} = {x}", f.name));
+                }
+                f.set_param(k, x);
+            }
+        }
+        for cu in custom.iter_mut() {
+            let n = r.u32()? as usize;
+            if n != cu.params.len() {
+                return Err(format!(
+                    "custom effect {}: {n} parameters, it has {}",
+                    cu.effect.name(),
+                    cu.params.len()
+                ));
+            }
+            for x in cu.params.iter_mut() {
+                *x = r.f64()?;
+                if !x.is_finite() {
+                    return Err(format!(
+                        "custom effect {}: a parameter is {x}",
+                        cu.effect.name()
+                    ));
+                }
+            }
+        }
+    }
     Ok(Config {
         model,
         preset,
@@ -180,8 +247,8 @@ fn get_config(r: &mut R) -> Result<Config, String> {
         bound,
         grid,
         geometry,
-        formulas: Vec::new(),
-        custom: Vec::new(),
+        formulas,
+        custom,
     })
 }
 
@@ -199,6 +266,7 @@ pub fn serialize(s: &Snapshot) -> Vec<u8> {
     w.u8(st.model_set as u8);
     w.str(&st.preset);
     w.str(&st.config_file);
+    w.str(&st.columns);
     w.u32(st.params.len() as u32);
     for (p, x) in &st.params {
         w.u32(*p as u32);
@@ -246,7 +314,7 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
         ));
     }
     let time = r.f64()?;
-    let mut inputs = [0.0; 6];
+    let mut inputs = [0.0; crate::vars::N_INPUTS];
     for x in inputs.iter_mut() {
         *x = r.f64()?;
     }
@@ -255,6 +323,7 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
         model_set: r.bool()?,
         preset: r.str()?,
         config_file: r.str()?,
+        columns: r.str()?,
         ..Settings::default()
     };
     let n = r.u32()?;
@@ -290,6 +359,10 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
             .as_ref()
             .ok_or_else(|| "a model state without a configuration".to_string())?;
         let mut m = Model::new(cfg).map_err(|e| e.to_string())?;
+        // formula/custom effects read their data columns when the inputs are restored
+        if let Some(x) = extras_for(cfg, &st.columns, &inputs)? {
+            m.set_extra(&x).map_err(|e| e.to_string())?;
+        }
         m.load_state(bytes).map_err(|e| e.to_string())?;
         Some(m)
     } else {

@@ -41,7 +41,7 @@ pub enum Causality {
     Output,
 }
 
-/// One of the six inputs of a contact, in the order of [`INPUT_NAMES`].
+/// One of the inputs of a contact, in the order of [`INPUT_NAMES`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum In {
     /// Longitudinal creepage.
@@ -56,7 +56,16 @@ pub enum In {
     Fn,
     /// Bulk temperature.
     TBulk,
+    /// Auxiliary input 1..4 (index 0..3): a data column of formula or custom effects.
+    Aux(usize),
 }
+
+/// Number of auxiliary inputs.
+pub const N_AUX: usize = 4;
+/// Number of inputs (six contact inputs and the auxiliary inputs).
+pub const N_INPUTS: usize = 6 + N_AUX;
+/// Value reference of `aux1` (the others follow).
+pub const VR_AUX0: u32 = 90;
 
 /// One of the outputs of a contact.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -150,6 +159,8 @@ pub enum Slot {
     Preset,
     /// Configuration JSON file.
     ConfigFile,
+    /// Data columns of the configuration: which auxiliary input or constant feeds each.
+    Columns,
 }
 
 /// Start value of a variable.
@@ -193,7 +204,9 @@ pub struct Var {
 }
 
 /// Names of the inputs, in the order of [`In`].
-pub const INPUT_NAMES: [&str; 6] = ["cx", "cy", "spin", "v", "FN", "T_bulk"];
+pub const INPUT_NAMES: [&str; N_INPUTS] = [
+    "cx", "cy", "spin", "v", "FN", "T_bulk", "aux1", "aux2", "aux3", "aux4",
+];
 
 /// Value reference of the first material parameter (the others follow in `SPECS` order).
 pub const VR_PARAM0: u32 = 100;
@@ -327,6 +340,9 @@ pub fn default_config() -> Config {
     })
 }
 
+/// What the start value of a parameter of the preset means (every description says it).
+pub const UNSET: &str = "a value equal to the start value means 'not set': the preset's or configuration file's value applies";
+
 /// Start values of the curvature parameters (m): a wheel of radius 0.46 m on a straight rail
 /// with a 0.3 m crown radius, which gives a contact of about the default size.
 pub const RX_START: f64 = 0.46;
@@ -453,6 +469,17 @@ pub fn table() -> Vec<Var> {
         ),
         (Out::P0, "p0", Some("Pa"), "maximum Hertz pressure"),
     ];
+    for k in 0..N_AUX {
+        v.push(real(
+            INPUT_NAMES[6 + k],
+            VR_AUX0 + k as u32,
+            Input,
+            None,
+            Start::Real(0.0),
+            &format!("auxiliary input {}: the value of a data column used by formula or custom effects of the configuration, mapped by the parameter columns (e.g. columns = \"humidity=aux{}\"); unused otherwise", k + 1, k + 1),
+            Slot::Input(In::Aux(k)),
+        ));
+    }
     for (i, (slot, name, unit, d)) in outs.into_iter().enumerate() {
         v.push(real(
             name,
@@ -482,7 +509,7 @@ pub fn table() -> Vec<Var> {
             Parameter,
             Some(unit),
             Start::Real(start),
-            d,
+            &format!("{d}; {UNSET}"),
             Slot::Geo(slot),
         );
         var.min = Some(0.0);
@@ -506,9 +533,12 @@ pub fn table() -> Vec<Var> {
         kind: Kind::Integer,
         causality: Parameter,
         unit: None,
-        description: "bristle grid: cells per strip in rolling direction".into(),
-        start: Start::Integer(cfg.grid.nx as i32),
-        min: Some(2.0),
+        description: format!(
+            "bristle grid: cells per strip in rolling direction; 0 = from the preset or configuration file ({} for the presets)",
+            cfg.grid.nx
+        ),
+        start: Start::Integer(0),
+        min: Some(0.0),
         max: Some(2000.0),
         slot: Slot::Nx,
     });
@@ -518,9 +548,12 @@ pub fn table() -> Vec<Var> {
         kind: Kind::Integer,
         causality: Parameter,
         unit: None,
-        description: "bristle grid: strips across the contact".into(),
-        start: Start::Integer(cfg.grid.ny as i32),
-        min: Some(1.0),
+        description: format!(
+            "bristle grid: strips across the contact; 0 = from the preset or configuration file ({} for the presets)",
+            cfg.grid.ny
+        ),
+        start: Start::Integer(0),
+        min: Some(0.0),
         max: Some(1000.0),
         slot: Slot::Ny,
     });
@@ -539,6 +572,7 @@ pub fn table() -> Vec<Var> {
                 first.trim_end_matches('.')
             )
         };
+        let description = format!("{description}; {UNSET}");
         v.push(Var {
             name: format!("effect_{}", info.name),
             vr: 50 + i as u32,
@@ -552,10 +586,11 @@ pub fn table() -> Vec<Var> {
             slot: Slot::Effect(info.effect),
         });
     }
-    let strings: [(Slot, &str, &str, &str); 3] = [
-        (Slot::Model, "model", "ecf", "model family: ecf, fastsim or polach"),
+    let strings: [(Slot, &str, &str, &str); 4] = [
+        (Slot::Model, "model", "", "model family: ecf, fastsim or polach; empty (default): the model of the preset or configuration file (ecf if neither is set)"),
         (Slot::Preset, "preset", "", "condition preset (table4.1, dry, wet, dry_sanded, wet_sanded, twin_disc, fastsim, polach); empty: the model's default"),
-        (Slot::ConfigFile, "config_file", "", "configuration JSON file (creep-core format); relative paths are resolved against the FMU's resources/ folder; empty: none"),
+        (Slot::ConfigFile, "config_file", "", "configuration JSON file (creep-core format, a regular file of at most 1 MiB); relative paths are resolved against the FMU's resources/ folder; empty: none"),
+        (Slot::Columns, "columns", "", "data columns of formula/custom effects: NAME=auxK feeds column NAME from input auxK, NAME=VALUE holds it constant; comma separated, e.g. humidity=aux1, salt=0.2; empty: none"),
     ];
     for (i, (slot, name, start, d)) in strings.into_iter().enumerate() {
         v.push(Var {
@@ -578,7 +613,7 @@ pub fn table() -> Vec<Var> {
             kind: Kind::Real,
             causality: Parameter,
             unit: unit_of(s.unit),
-            description: format!("{} [{}]", s.description, s.effect),
+            description: format!("{} [{}]; {UNSET}", s.description, s.effect),
             start: Start::Real(cfg.params.get(s.id)),
             min: Some(s.min),
             max: if s.max.is_finite() { Some(s.max) } else { None },

@@ -54,10 +54,10 @@ fn a_set_call_with_one_bad_value_applies_none() {
     let f = Fmu::new("atomic-int");
     let vrs = [vr("nx"), vr("ny")];
     assert_eq!(
-        unsafe { fmi2SetInteger(f.c, vrs.as_ptr(), 2, [30, 0].as_ptr()) },
+        unsafe { fmi2SetInteger(f.c, vrs.as_ptr(), 2, [30, -1].as_ptr()) },
         ERROR
     );
-    assert!(has(&f, &["ny = 0", "[1, 1000]"]), "{:?}", f.messages());
+    assert!(has(&f, &["ny = -1", "[0, 1000]"]), "{:?}", f.messages());
     assert_eq!(unsafe { fmi2SetupExperiment(f.c, 0, 0.0, 0.0, 0, 0.0) }, OK);
     assert_eq!(unsafe { fmi2EnterInitializationMode(f.c) }, OK);
     let mut n = [0i32; 2];
