@@ -6,9 +6,13 @@
 #   bash scripts/bench.sh            full run (about 2-3 minutes)
 #   bash scripts/bench.sh --quick    short run (CI smoke test, < 30 s)
 #   bash scripts/bench.sh --only steady|transient|diagnose
+#   bash scripts/bench.sh --only threads   transient on all cores vs one (not pinned)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p ecf-cli -p ecf-bench
+if [[ " $* " == *" threads "* ]]; then
+  exec target/release/ecf-bench "$@"
+fi
 if command -v taskset >/dev/null 2>&1; then
   exec taskset -c 0 target/release/ecf-bench "$@"
 fi

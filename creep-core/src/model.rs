@@ -113,6 +113,15 @@ impl Model {
         }
     }
 
+    /// Threads that advance the bristle strips (1: the calling thread; results do not
+    /// depend on it). Polach has no strips.
+    pub fn set_threads(&mut self, threads: usize) -> Result<()> {
+        match self {
+            Model::Bristle(c) if c.threads() != threads.max(1) => c.set_threads(threads),
+            _ => Ok(()),
+        }
+    }
+
     /// Warnings since the last call (drained).
     pub fn take_warnings(&mut self) -> Vec<String> {
         match self {

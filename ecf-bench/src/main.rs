@@ -1,6 +1,6 @@
 //! `ecf-bench`: cost of the ECF engine against a plain C FASTSIM, transient real-time factors and `ecf diagnose`, measured interleaved in one process (medians).
 //!
-//! Usage: ecf-bench [--quick] [--only steady|transient|diagnose]
+//! Usage: ecf-bench [--quick] [--only steady|transient|diagnose|threads]
 use creep_core::engine::Scheme;
 use creep_core::{Config, Grid, Inputs, Model};
 use ecf_bench::Contact;
@@ -208,6 +208,65 @@ fn transient_table(quick: bool) {
     }
 }
 
+/// Transient cost with the strips on several threads (`Contact::set_threads`), against one
+/// thread, interleaved step by step; not pinned to one core (scripts/bench.sh runs it apart).
+fn threads_table(quick: bool) {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if cores < 2 {
+        println!("== threads: skipped (one core available)");
+        return;
+    }
+    let sim = if quick { 0.01 } else { 0.05 };
+    println!("== transient ECF on {cores} threads vs 1 (default scheme, preset dry, 80x21, c_x = 15 %, {sim} s simulated; medians of per-step ratios)");
+    println!(
+        "{:>8} {:>8} {:>18} {:>18} {:>10}",
+        "v_m/s", "dt_ms", "wall/sim 1 thread", "wall/sim threads", "speed-up"
+    );
+    for (v, dt) in [(5.0, 1e-3), (20.0, 1e-4), (30.0, 2.5e-4)] {
+        let i = Inputs {
+            cx: 0.15,
+            v,
+            fn_n: 110e3,
+            ..Inputs::default()
+        };
+        let mut ms: Vec<Model> = [1, cores]
+            .iter()
+            .map(|&n| {
+                let mut m = model("dry", 80, 21);
+                if let Model::Bristle(c) = &mut m {
+                    c.set_threads(n).expect("threads");
+                }
+                m.steady(&i).expect("steady");
+                m
+            })
+            .collect();
+        let n = ((sim / dt) as usize).max(5);
+        let (mut t1, mut tn, mut r) = (Vec::new(), Vec::new(), Vec::new());
+        for k in 0..n {
+            let j = Inputs {
+                cx: 0.15 + 0.01 * (k as f64 * 0.3).sin(),
+                ..i
+            };
+            let mut t = [0.0; 2];
+            for (m, tt) in ms.iter_mut().zip(t.iter_mut()) {
+                let s = Instant::now();
+                black_box(m.step(dt, &j).expect("step"));
+                *tt = s.elapsed().as_secs_f64();
+            }
+            t1.push(t[0]);
+            tn.push(t[1]);
+            r.push(t[0] / t[1]);
+        }
+        println!(
+            "{v:>8} {:>8} {:>18.2} {:>18.2} {:>10.2}",
+            dt * 1e3,
+            median(t1) / dt,
+            median(tn) / dt,
+            median(r)
+        );
+    }
+}
+
 fn diagnose(quick: bool) {
     let exe = std::path::Path::new("target/release/ecf");
     if !exe.exists() {
@@ -251,12 +310,12 @@ fn main() {
         .and_then(|p| args.get(p + 1))
         .cloned();
     if let Some(o) = &only {
-        if !["steady", "transient", "diagnose"].contains(&o.as_str()) {
-            eprintln!("ecf-bench: --only takes steady, transient or diagnose (got '{o}')");
+        if !["steady", "transient", "diagnose", "threads"].contains(&o.as_str()) {
+            eprintln!("ecf-bench: --only takes steady, transient, diagnose or threads (got '{o}')");
             std::process::exit(2);
         }
     }
-    let run = |w: &str| only.as_deref().is_none_or(|o| o == w);
+    let run = |w: &str| only.as_deref().is_none_or(|o| o == w) && w != "threads";
     if run("steady") {
         steady_table(quick);
     }
@@ -265,5 +324,9 @@ fn main() {
     }
     if run("diagnose") {
         diagnose(quick);
+    }
+    // on request only: every other table runs pinned to one core
+    if only.as_deref() == Some("threads") {
+        threads_table(quick);
     }
 }

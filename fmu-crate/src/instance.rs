@@ -222,6 +222,8 @@ pub struct Settings {
     pub nx: Option<usize>,
     /// Grid strips, if set.
     pub ny: Option<usize>,
+    /// Threads that advance the strips (0 or 1: the calling thread).
+    pub threads: usize,
     /// Geometry mode: 0 configuration, 1 semi-axes, 2 curvatures.
     pub geometry: i32,
     /// Geometry values set by the importer (a_ref, b_ref, FN_ref, Rx, Ry), SI.
@@ -950,6 +952,7 @@ impl Instance {
             if rebuild {
                 self.model = Some(Model::new(&cfg).map_err(|e| e.to_string())?);
             }
+            self.apply_threads()?;
             let inputs = core_inputs(&self.inputs);
             let extra = self.extras(&cfg)?;
             if let Some(m) = self.model.as_mut() {
@@ -1028,6 +1031,9 @@ impl Instance {
         let v = self.var(F, vr, Kind::Integer)?;
         if v.slot == Slot::GeometryMode {
             return Ok(self.settings.geometry);
+        }
+        if v.slot == Slot::Threads {
+            return Ok(self.settings.threads.max(1) as i32);
         }
         match self.config() {
             Ok(c) => Ok(if v.slot == Slot::Nx {
@@ -1160,7 +1166,7 @@ impl Instance {
                     return refuse(self, format!("must be finite and > 0 {unit}"));
                 }
             }
-            (Slot::GeometryMode | Slot::Nx | Slot::Ny, Value::Integer(x)) => {
+            (Slot::GeometryMode | Slot::Nx | Slot::Ny | Slot::Threads, Value::Integer(x)) => {
                 let (lo, hi) = (v.min.unwrap_or(0.0) as i32, v.max.unwrap_or(1e9) as i32);
                 if *x < lo || *x > hi {
                     return refuse(
@@ -1249,6 +1255,7 @@ impl Instance {
             (Slot::GeometryMode, Value::Integer(x)) => self.settings.geometry = *x,
             (Slot::Nx, Value::Integer(x)) => self.settings.nx = (*x > 0).then_some(*x as usize),
             (Slot::Ny, Value::Integer(x)) => self.settings.ny = (*x > 0).then_some(*x as usize),
+            (Slot::Threads, Value::Integer(x)) => self.settings.threads = (*x).max(1) as usize,
             (Slot::Effect(e), Value::Boolean(x)) => {
                 if v.start == Start::Boolean(*x) {
                     self.settings.effects.remove(&e);
@@ -1309,6 +1316,16 @@ impl Instance {
     }
 
     /// fmi2SetFMUstate: restores a snapshot.
+    /// Gives the model the importer's `threads` (not part of a state: it does not change
+    /// results).
+    fn apply_threads(&mut self) -> Result<(), String> {
+        let n = self.settings.threads.max(1);
+        match self.model.as_mut() {
+            Some(m) => m.set_threads(n).map_err(|e| e.to_string()),
+            None => Ok(()),
+        }
+    }
+
     pub fn set_state(&mut self, s: &Snapshot) -> Status {
         const F: &str = "fmi2SetFMUstate";
         if let Err(e) = validate_snapshot(s) {
@@ -1322,11 +1339,18 @@ impl Instance {
                 self.phase.name()
             ));
         }
+        // the importer's threads stay (a serialized state does not carry them)
+        let threads = self.settings.threads;
+        let mut model = s.model.clone();
+        if let Some(Err(e)) = model.as_mut().map(|m| m.set_threads(threads.max(1))) {
+            return self.error(format!("{F}: {e}; the instance is unchanged"));
+        }
         self.settings = s.settings.clone();
+        self.settings.threads = threads;
         self.inputs = s.inputs;
         self.time = s.time;
         self.cfg = s.cfg.clone();
-        self.model = s.model.clone();
+        self.model = model;
         self.model_current = self.model.is_some();
         self.restored = self.model.is_some();
         if self.phase == Phase::Error {
@@ -1381,6 +1405,44 @@ mod tests {
         assert_eq!(i.enter_initialization(), Status::Ok);
         assert_eq!(i.exit_initialization(), Status::Ok);
         i
+    }
+
+    #[test]
+    fn threads_give_the_same_steps_and_survive_a_state_restore() {
+        let run = |threads: i32| {
+            let mut i = Instance::new("t", None, false);
+            assert_eq!(i.set_integer(vr("nx"), 20), Status::Ok);
+            assert_eq!(i.set_integer(vr("ny"), 9), Status::Ok);
+            assert_eq!(i.set_integer(vr("threads"), threads), Status::Ok);
+            assert_eq!(i.enter_initialization(), Status::Ok);
+            assert_eq!(i.exit_initialization(), Status::Ok);
+            assert_eq!(i.get_integer(vr("threads")), Ok(threads));
+            let mut fx = Vec::new();
+            let mut saved = None;
+            for k in 0..20 {
+                assert_eq!(i.set_real(vr("cx"), 0.002 + 0.01 * k as f64), Status::Ok);
+                assert_eq!(i.do_step(k as f64 * 1e-4, 1e-4), Status::Ok);
+                fx.push(i.get_real(vr("Fx")).expect("Fx"));
+                if k == 10 {
+                    saved = Some(i.get_state());
+                }
+            }
+            assert_eq!(i.set_state(saved.as_ref().expect("state")), Status::Ok);
+            assert_eq!(i.get_integer(vr("threads")), Ok(threads));
+            assert_eq!(i.set_real(vr("cx"), 0.002 + 0.01 * 11.0), Status::Ok);
+            assert_eq!(i.do_step(11e-4, 1e-4), Status::Ok);
+            fx.push(i.get_real(vr("Fx")).expect("Fx"));
+            fx
+        };
+        let one = run(1);
+        assert_eq!(one[11], one[20], "a restored state repeats its step");
+        assert_eq!(one, run(3));
+        // out of range
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.set_integer(vr("threads"), 0), Status::Error);
+        assert_eq!(i.set_integer(vr("threads"), 65), Status::Error);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.get_integer(vr("threads")), Ok(1));
     }
 
     #[test]

@@ -151,6 +151,8 @@ pub enum Slot {
     Nx,
     /// Grid strips.
     Ny,
+    /// Threads that advance the strips.
+    Threads,
     /// An effect switch.
     Effect(Effect),
     /// Model family name.
@@ -556,6 +558,18 @@ pub fn table() -> Vec<Var> {
         min: Some(0.0),
         max: Some(1000.0),
         slot: Slot::Ny,
+    });
+    v.push(Var {
+        name: "threads".into(),
+        vr: 43,
+        kind: Kind::Integer,
+        causality: Parameter,
+        unit: None,
+        description: "threads that advance the bristle strips of the contact (the results do not depend on it); 1: the importer's thread alone".into(),
+        start: Start::Integer(1),
+        min: Some(1.0),
+        max: Some(64.0),
+        slot: Slot::Threads,
     });
     for (i, info) in effects::CATALOGUE.iter().enumerate() {
         let first = info

@@ -1,5 +1,6 @@
 //! Advancing the bristles: one bristle move with its local temperature (Eq. 4.16, 4.21, 4.35), sub-steps of a strip, the march of new bristles.
 
+use super::strip::Strip;
 use super::{Contact, V_STANDSTILL};
 use crate::bristle::{self, BristleState};
 use crate::material::NodeP;
@@ -190,60 +191,59 @@ impl Contact {
         j * (self.nx + 1) + (self.head[j] + slot) % (self.nx + 1)
     }
 
-    /// One sub-step of strip `j`: bristles move by `dist` (m) in time `h` (s); the phase is
+    /// One sub-step of strip `sp`: bristles move by `dist` (m) in time `h` (s); the phase is
     /// advanced by the caller. Nodes are evaluated at their end-of-sub-step positions.
     pub(super) fn substep_strip(
-        &mut self,
-        j: usize,
+        &self,
+        sp: &mut Strip,
         h: f64,
         dist: f64,
         phase_end: f64,
         skip: usize,
         end: usize,
     ) {
-        let nx = self.nx;
+        let (nx, j) = (self.nx, sp.j);
         let dxi = 2.0 * self.ell[j] / nx as f64;
         let kin = self.kin(h, dist);
-        let fac = self.factors(h, kin.heat);
+        let fac = self.factors(sp.fac, h, kin.heat);
         let inside = if phase_end > 0.0 { nx } else { nx + 1 };
-        // update in place (the state vectors are moved out so `self` stays borrowable)
-        let mut st = std::mem::take(&mut self.st);
-        let mut accs = std::mem::take(&mut self.acc);
         if phase_end == 1.0 {
             // full-cell moves end on the lattice nodes: their pressure parts are cached
-            let nodes = self.lattice_nodes(j);
+            self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
             for slot in skip..inside.min(end) {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
-                let id = self.idx(j, slot);
-                let (s, ac) = (&mut st[id], &mut accs[id]);
-                self.move_bristle_with(j, xi, &nodes[slot + 1], &kin, &fac, s, ac);
+                let id = sp.slot(slot);
+                let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
+                self.move_bristle_with(j, xi, &sp.nodes[slot + 1], &kin, &fac, s, ac);
             }
-            self.np_cache[j] = nodes;
         } else {
             for slot in skip..inside.min(end) {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
-                let id = self.idx(j, slot);
-                self.move_bristle(j, xi, &kin, &fac, &mut st[id], &mut accs[id]);
+                let id = sp.slot(slot);
+                self.move_bristle(j, xi, &kin, &fac, &mut sp.st[id], &mut sp.acc[id]);
             }
         }
-        self.st = st;
-        self.acc = accs;
     }
 
     /// Kernel factors of a sub-step of length `h` (identity when no heat flows), from a small
     /// cache keyed by h: a march and the full-cell sub-steps of a step repeat the same h.
-    pub(super) fn factors(&mut self, h: f64, heat: bool) -> StepFactors {
+    pub(super) fn factors(
+        &self,
+        cache: &mut Vec<(f64, StepFactors)>,
+        h: f64,
+        heat: bool,
+    ) -> StepFactors {
         if !(self.r.temperature && heat) {
             return StepFactors::identity(h);
         }
-        if let Some((_, f)) = self.fac_cache.iter().find(|(hh, _)| *hh == h) {
+        if let Some((_, f)) = cache.iter().find(|(hh, _)| *hh == h) {
             return *f;
         }
         let f = self.kernel.factors(h);
-        if self.fac_cache.len() >= FAC_CACHE {
-            self.fac_cache.remove(0);
+        if cache.len() >= FAC_CACHE {
+            cache.remove(0);
         }
-        self.fac_cache.push((h, f));
+        cache.push((h, f));
         f
     }
 
@@ -324,53 +324,53 @@ impl Contact {
         s.temp = k.t_bulk;
     }
 
-    /// Pressure parts of the lattice nodes k = 1..=nx of strip `j` at the current load, cached
-    /// (recomputed when the peak pressure changes).
-    fn lattice_nodes(&mut self, j: usize) -> Vec<NodeP> {
+    /// Pressure parts of the lattice nodes k = 1..=nx of strip `j` at the current load in
+    /// `nodes`, cached: recomputed when the peak pressure `p0` they belong to changes.
+    pub(super) fn lattice_nodes(&self, j: usize, nodes: &mut Vec<NodeP>, p0: &mut f64) {
         let nx = self.nx;
-        let mut c = std::mem::take(&mut self.np_cache[j]);
-        if self.np_cache_p0[j] != self.patch.p0 || c.len() != nx + 1 {
+        if *p0 != self.patch.p0 || nodes.len() != nx + 1 {
             let dxi = 2.0 * self.ell[j] / nx as f64;
-            c.clear();
-            c.push(NodeP::default());
+            nodes.clear();
+            nodes.push(NodeP::default());
             for k in 1..=nx {
                 let xi = (self.ell[j] - k as f64 * dxi).max(-self.ell[j] + 0.5 * dxi);
-                c.push(self.r.node_p(&self.patch, xi, self.eta[j]));
+                nodes.push(self.r.node_p(&self.patch, xi, self.eta[j]));
             }
-            self.np_cache_p0[j] = self.patch.p0;
+            *p0 = self.patch.p0;
         }
-        c
     }
 
     /// States of the `count` bristles that entered strip `j` during the current step: the one
     /// in slot k made k full cell moves, then the final partial move `d_end` (m) that ends at
     /// the strip's phase. Same updates, positions and sub-step lengths as the sub-step loop.
-    pub(super) fn march_new(&mut self, j: usize, count: usize, d_end: f64) {
+    pub(super) fn march_new(&self, sp: &mut Strip, count: usize, d_end: f64) {
+        let j = sp.j;
         let v = self.inputs.v;
         let dx = 2.0 * self.ell[j] * self.patch.a / self.nx as f64;
         let dxi = 2.0 * self.ell[j] / self.nx as f64;
-        let phase_end = self.phase[j];
+        let phase_end = *sp.phase;
         // With v = 0 (the steady march at standstill) the march is over distance only and
         // carries no heat: the v -> 0 limit.
         let time = |d: f64| if v > V_STANDSTILL { d / v } else { 0.0 };
         let kin_full = self.kin(time(dx), dx);
-        let fac_full = self.factors(time(dx), kin_full.heat);
+        let fac_full = self.factors(sp.fac, time(dx), kin_full.heat);
         let kin_part = self.kin(time(d_end), d_end);
-        let fac_part = self.factors(time(d_end), kin_part.heat);
+        let fac_part = self.factors(sp.fac, time(d_end), kin_part.heat);
         let mut s = BristleState {
             temp: self.inputs.t_bulk,
             ..BristleState::default()
         };
         let mut acc = [0.0; N_KERNEL];
         if d_end == 0.0 && self.coulomb_path() {
-            self.march_coulomb(j, count, &kin_full);
+            self.march_coulomb(sp, count, &kin_full);
             return;
         }
         // without temperature the accumulators stay zero: no copies
         let hot = self.r.temperature;
-        let nodes = self.lattice_nodes(j);
+        self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
+        let nodes = &*sp.nodes;
         for k in 0..count {
-            let id = self.idx(j, k);
+            let id = sp.slot(k);
             // slot nx is past the trailing edge once the phase is > 0: not moved (as in the loop)
             if d_end > 0.0 && k < self.nx {
                 let (mut ps, mut pacc) = (s, acc);
@@ -382,14 +382,14 @@ impl Contact {
                     &mut ps,
                     &mut pacc,
                 );
-                self.st[id] = ps;
+                sp.st[id] = ps;
                 if hot {
-                    self.acc[id] = pacc;
+                    sp.acc[id] = pacc;
                 }
             } else {
-                self.st[id] = s;
+                sp.st[id] = s;
                 if hot {
-                    self.acc[id] = acc;
+                    sp.acc[id] = acc;
                 }
             }
             if k + 1 < count {
@@ -404,7 +404,6 @@ impl Contact {
                 );
             }
         }
-        self.np_cache[j] = nodes;
     }
 
     /// True if the dedicated FASTSIM march applies: Coulomb bound, no layer elasticity, no
@@ -422,9 +421,10 @@ impl Contact {
     /// Kalker's brush with the radial return onto the Coulomb bound mu p, in one tight loop
     /// with the same operations as [`bristle::update`] for tc1 = tc2 = mu p and L_e = 0
     /// (results equal the general path to rounding: reciprocals are multiplied, not divided).
-    fn march_coulomb(&mut self, j: usize, count: usize, kin: &Kin) {
-        let nx = self.nx;
-        let nodes = self.lattice_nodes(j);
+    fn march_coulomb(&self, sp: &mut Strip, count: usize, kin: &Kin) {
+        let (nx, j) = (self.nx, sp.j);
+        self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
+        let nodes = &*sp.nodes;
         let a = self.patch.a;
         let dxi = 2.0 * self.ell[j] / nx as f64;
         let y = if self.patch.line {
@@ -443,10 +443,8 @@ impl Contact {
             temp: self.inputs.t_bulk,
             ..BristleState::default()
         };
-        let base = j * (nx + 1);
-        let head = self.head[j];
         for k in 0..count {
-            self.st[base + (head + k) % (nx + 1)] = s;
+            sp.st[(*sp.head + k) % (nx + 1)] = s;
             if k + 1 >= count {
                 break;
             }
@@ -481,108 +479,96 @@ impl Contact {
                 0.0
             };
         }
-        self.np_cache[j] = nodes;
     }
 
-    /// A new bristle enters strip `j`: the oldest slot is recycled at the leading edge.
-    pub(super) fn enter_bristle(&mut self, j: usize) {
+    /// A new bristle enters the strip: the oldest slot is recycled at the leading edge.
+    pub(super) fn enter_bristle(&self, sp: &mut Strip) {
         let nx1 = self.nx + 1;
-        self.head[j] = (self.head[j] + self.nx) % nx1;
-        let id = self.idx(j, 0);
-        self.st[id] = BristleState {
+        *sp.head = (*sp.head + self.nx) % nx1;
+        let id = sp.slot(0);
+        sp.st[id] = BristleState {
             temp: self.inputs.t_bulk,
             ..BristleState::default()
         };
-        self.acc[id] = [0.0; N_KERNEL];
-        self.phase[j] = 0.0;
+        sp.acc[id] = [0.0; N_KERNEL];
+        *sp.phase = 0.0;
     }
 }
 
 impl Contact {
     /// A step of `dt` that rolls past the whole contact (v dt >= 2a): every bristle enters
-    /// during it, so each strip is the steady march of the step's inputs, ending at the
+    /// during it, so the strip is the steady march of the step's inputs, ending at the
     /// strip's new phase (the entries are counted in closed form: bounded work however long
     /// the step or small the contact).
-    pub(super) fn march_all(&mut self, dt: f64) {
+    pub(super) fn march_all(&self, sp: &mut Strip, dt: f64) {
         let dist = self.inputs.v * dt;
-        for j in 0..self.ny {
-            let dx = 2.0 * self.ell[j] * self.patch.a / self.nx as f64;
-            let cells = self.phase[j] + dist / dx;
-            let ph = (cells - (cells + 1e-9).floor()).max(0.0);
-            let ph = if ph < 1e-9 { 0.0 } else { ph };
-            self.head[j] = 0;
-            self.phase[j] = ph;
-            self.march_new(j, self.nx + 1, ph * dx);
-        }
+        let dx = 2.0 * self.ell[sp.j] * self.patch.a / self.nx as f64;
+        let cells = *sp.phase + dist / dx;
+        let ph = (cells - (cells + 1e-9).floor()).max(0.0);
+        let ph = if ph < 1e-9 { 0.0 } else { ph };
+        *sp.head = 0;
+        *sp.phase = ph;
+        self.march_new(sp, self.nx + 1, ph * dx);
     }
 
-    /// [`super::Scheme::Continuous`]: advances every strip by `dt` (0 < v dt < 2a). The bristles that
-    /// stay in the contact move by v dt in `n_sub` equal sub-steps of at most
+    /// [`super::Scheme::Continuous`]: advances the strip by `dt` (0 < v dt < 2a). The bristles
+    /// that stay in the contact move by v dt in `n_sub` equal sub-steps of at most
     /// [`super::MAX_SUBSTEP_CELLS`] cells (material at each sub-step's end, Eq. 4.5); those
     /// that enter during the step are marched cell by cell from the leading edge (their
     /// whole history is this step's constant inputs, as in the steady march); those that
     /// leave are not moved. The number of entries is computed in closed form, so the work
     /// of a step is bounded by about one sweep times `n_sub`, however far it rolls: a step
     /// that rolls past the whole contact (v dt >= 2a) is the steady state of its inputs.
-    pub(super) fn advance_continuous(&mut self, dt: f64) {
+    pub(super) fn advance_continuous(&self, sp: &mut Strip, dt: f64) {
         let v = self.inputs.v;
         let a = self.patch.a;
         let nx = self.nx;
+        let j = sp.j;
         let dist = v * dt;
         let d_max = super::MAX_SUBSTEP_CELLS * 2.0 * a / nx as f64;
         let n_sub_eff = ((dist / d_max) * (1.0 - 1e-12)).ceil().max(1.0);
         let (h, d) = (dt / n_sub_eff, dist / n_sub_eff);
         let kin = self.kin(h, d);
-        let fac = self.factors(h, kin.heat);
-        let mut st = std::mem::take(&mut self.st);
-        let mut accs = std::mem::take(&mut self.acc);
-        for j in 0..self.ny {
-            let dx = 2.0 * self.ell[j] * a / nx as f64;
-            let dxi = 2.0 * self.ell[j] / nx as f64;
-            let ph0 = self.phase[j];
-            let cells = ph0 + dist / dx;
-            let wraps_f = (cells + 1e-9).floor();
-            let wraps = if wraps_f > nx as f64 {
-                nx + 1
-            } else {
-                wraps_f as usize
-            };
-            let phase_end = if wraps > nx {
-                (cells - wraps_f).max(0.0)
-            } else {
-                (cells - wraps_f).clamp(0.0, 1.0 - f64::EPSILON)
-            };
-            let phase_end = if phase_end < 1e-9 { 0.0 } else { phase_end };
-            if wraps <= nx {
-                // old slot s ends in slot s + wraps at phase_end; it is moved if it is still
-                // inside then (the last slot only at phase 0)
-                for slot in 0..=nx - wraps {
-                    if slot + wraps == nx && phase_end > 0.0 {
-                        continue;
-                    }
-                    let xi0 = self.ell[j] - (slot as f64 + ph0) * dxi;
-                    let id = j * (nx + 1) + (self.head[j] + slot) % (nx + 1);
-                    let (s, ac) = (&mut st[id], &mut accs[id]);
-                    for i in 1..=n_sub_eff as usize {
-                        let xi_end = xi0 - i as f64 * d / a;
-                        self.move_bristle(j, xi_end, &kin, &fac, s, ac);
-                    }
+        let fac = self.factors(sp.fac, h, kin.heat);
+        let dx = 2.0 * self.ell[j] * a / nx as f64;
+        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let ph0 = *sp.phase;
+        let cells = ph0 + dist / dx;
+        let wraps_f = (cells + 1e-9).floor();
+        let wraps = if wraps_f > nx as f64 {
+            nx + 1
+        } else {
+            wraps_f as usize
+        };
+        let phase_end = if wraps > nx {
+            (cells - wraps_f).max(0.0)
+        } else {
+            (cells - wraps_f).clamp(0.0, 1.0 - f64::EPSILON)
+        };
+        let phase_end = if phase_end < 1e-9 { 0.0 } else { phase_end };
+        if wraps <= nx {
+            // old slot s ends in slot s + wraps at phase_end; it is moved if it is still
+            // inside then (the last slot only at phase 0)
+            for slot in 0..=nx - wraps {
+                if slot + wraps == nx && phase_end > 0.0 {
+                    continue;
+                }
+                let xi0 = self.ell[j] - (slot as f64 + ph0) * dxi;
+                let id = sp.slot(slot);
+                let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
+                for i in 1..=n_sub_eff as usize {
+                    let xi_end = xi0 - i as f64 * d / a;
+                    self.move_bristle(j, xi_end, &kin, &fac, s, ac);
                 }
             }
-            self.st = std::mem::take(&mut st);
-            self.acc = std::mem::take(&mut accs);
-            for _ in 0..wraps.min(nx + 1) {
-                self.enter_bristle(j);
-            }
-            self.phase[j] = phase_end;
-            if wraps > 0 {
-                self.march_new(j, wraps.min(nx + 1), phase_end * dx);
-            }
-            st = std::mem::take(&mut self.st);
-            accs = std::mem::take(&mut self.acc);
         }
-        self.st = st;
-        self.acc = accs;
+        for _ in 0..wraps.min(nx + 1) {
+            self.enter_bristle(sp);
+        }
+        *sp.phase = phase_end;
+        if wraps > 0 {
+            self.march_new(sp, wraps.min(nx + 1), phase_end * dx);
+        }
     }
 }
 
@@ -601,7 +587,10 @@ impl Contact {
             b.clear();
             b.resize(groups * (nx + 1), [0.0; LANES]);
             for j in 0..self.ny {
-                let nodes = self.lattice_nodes(j);
+                let mut nodes = std::mem::take(&mut self.np_cache[j]);
+                let mut p0 = self.np_cache_p0[j];
+                self.lattice_nodes(j, &mut nodes, &mut p0);
+                self.np_cache_p0[j] = p0;
                 let (g, l) = (j / LANES, j % LANES);
                 for (k, n) in nodes.iter().enumerate().skip(1) {
                     b[g * (nx + 1) + k][l] = n.bound;

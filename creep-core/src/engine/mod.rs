@@ -25,6 +25,7 @@ mod advance;
 mod grid;
 pub mod io;
 mod modifiers;
+mod strip;
 
 pub use crate::hertz::patch_for;
 pub use crate::material::layer_material;
@@ -98,8 +99,10 @@ pub struct Contact {
     /// for the peak pressure in `bound_cache_p0`.
     bound_cache: Vec<[f64; advance::LANES]>,
     bound_cache_p0: f64,
-    /// Kernel factors of recent sub-step lengths (h, factors).
-    fac_cache: Vec<(f64, thermal::StepFactors)>,
+    /// Kernel factors of recent sub-step lengths (h, factors), per strip.
+    fac_cache: Vec<Vec<(f64, thermal::StepFactors)>>,
+    /// Threads that advance the strips (None: the calling thread alone).
+    pool: Option<std::sync::Arc<rayon::ThreadPool>>,
     /// How a step advances the bristles (see [`Scheme`]).
     scheme: Scheme,
     /// Rolling backwards (the last non-zero speed was negative): the grid and `inputs`,
@@ -178,7 +181,8 @@ impl Contact {
             np_cache_p0: vec![f64::NAN; ny],
             bound_cache: Vec::new(),
             bound_cache_p0: f64::NAN,
-            fac_cache: Vec::new(),
+            fac_cache: vec![Vec::new(); ny],
+            pool: None,
             extra: Vec::new(),
             fvars: Vec::new(),
             fstatic: [1.0; 5],
@@ -368,94 +372,22 @@ impl Contact {
             return Ok(self.lift_off());
         }
         if inputs.v <= V_STANDSTILL || dt == 0.0 {
-            for j in 0..self.ny {
-                let ph = self.phase[j];
-                self.substep_strip(j, dt, 0.0, ph, 0, self.nx + 1);
-            }
+            self.each_strip(|c, sp| {
+                let ph = *sp.phase;
+                c.substep_strip(sp, dt, 0.0, ph, 0, c.nx + 1)
+            });
         } else if inputs.v * dt >= 2.0 * self.patch.a {
             // every bristle enters during the step: the steady state of the step's inputs
             // (bounded work however long the step or small the contact)
-            self.march_all(dt);
+            self.each_strip(|c, sp| c.march_all(sp, dt));
         } else if self.scheme == Scheme::Continuous {
-            self.advance_continuous(dt);
+            self.each_strip(|c, sp| c.advance_continuous(sp, dt));
         } else {
-            for j in 0..self.ny {
-                self.advance_cells(j, dt);
-            }
+            self.each_strip(|c, sp| c.advance_cells(sp, dt));
         }
         self.time += dt;
         self.out = self.integrate();
         Ok(self.out)
-    }
-
-    /// The reference scheme for strip `j`: every bristle gets one sub-step per cell crossing,
-    /// cut at the instants a new bristle enters (the steady march's sub-steps exactly). Costs
-    /// about (cells travelled) x (bristles) moves per step.
-    fn advance_cells(&mut self, j: usize, dt: f64) {
-        let v = self.inputs.v;
-        let a = self.patch.a;
-        let march = self.scheme == Scheme::CellsMarch;
-        let dx = 2.0 * self.ell[j] * a / self.nx as f64;
-        let mut remaining = v * dt;
-        let tol = 1e-9 * dx;
-        // Bristles that enter during this step see only this step's (constant) inputs:
-        // full cells, then the final partial move. They are computed afterwards by a march
-        // (`march_new`), which performs exactly the updates the sub-step loop would, so the
-        // loop only advances the bristles that were in the contact before the step
-        // (slots >= n_new). With v dt >= 2a the whole step costs one steady march.
-        let mut n_new = 0usize;
-        let mut d_end = 0.0;
-        // Bristles that will leave before the end of the step need no update at all: count
-        // this step's entries first (same arithmetic as the loop below).
-        let wraps = {
-            let (mut rem, mut ph, mut w) = (remaining, self.phase[j], 0usize);
-            while rem > tol {
-                let to_next = (1.0 - ph) * dx;
-                if rem >= to_next - tol {
-                    w += 1;
-                    rem -= to_next;
-                    ph = 0.0;
-                } else {
-                    rem = 0.0;
-                }
-            }
-            w
-        };
-        while remaining > tol {
-            let to_next = (1.0 - self.phase[j]) * dx;
-            if remaining >= to_next - tol {
-                // end positions are one node further (phase 1), then the slots shift
-                if !march {
-                    self.substep_strip(j, to_next / v, to_next, 1.0, 0, self.nx + 1);
-                } else if n_new + (wraps - n_new) <= self.nx {
-                    self.substep_strip(
-                        j,
-                        to_next / v,
-                        to_next,
-                        1.0,
-                        n_new,
-                        self.nx + 1 - (wraps - n_new),
-                    );
-                }
-                // all bristles moved one node: the slot numbering shifts by recycling the oldest
-                self.enter_bristle(j);
-                n_new += 1;
-                remaining -= to_next;
-            } else {
-                let ph = self.phase[j] + remaining / dx;
-                if !march {
-                    self.substep_strip(j, remaining / v, remaining, ph, 0, self.nx + 1);
-                } else if n_new <= self.nx {
-                    self.substep_strip(j, remaining / v, remaining, ph, n_new, self.nx + 1);
-                }
-                self.phase[j] = ph;
-                d_end = remaining;
-                remaining = 0.0;
-            }
-        }
-        if n_new > 0 && march {
-            self.march_new(j, n_new.min(self.nx + 1), d_end);
-        }
     }
 
     fn lift_off(&mut self) -> Outputs {
@@ -507,11 +439,11 @@ impl Contact {
     /// The steady march of every strip (the general path of [`Self::steady`]).
     #[inline(never)]
     fn steady_march(&mut self) -> Outputs {
-        for j in 0..self.ny {
-            self.head[j] = 0;
-            self.phase[j] = 0.0;
-            self.march_new(j, self.nx + 1, 0.0);
-        }
+        self.each_strip(|c, sp| {
+            *sp.head = 0;
+            *sp.phase = 0.0;
+            c.march_new(sp, c.nx + 1, 0.0)
+        });
         self.integrate()
     }
 
