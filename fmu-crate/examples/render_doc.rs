@@ -18,7 +18,10 @@ fn main() {
     let mut body = String::new();
     html::push_html(
         &mut body,
-        Parser::new_ext(&text, Options::ENABLE_TABLES | Options::ENABLE_STRIKETHROUGH),
+        Parser::new_ext(
+            &text,
+            Options::ENABLE_TABLES | Options::ENABLE_STRIKETHROUGH,
+        ),
     );
     let page = format!(
         "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>ecf_contact FMU</title>\n\
