@@ -44,8 +44,8 @@ fi
 
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-# Real-valued columns written with a decimal point: fmi-sim infers the CSV column types and
-# needs Float64 for Real inputs. Inputs not in the file (cy, spin, T_bulk, aux*) keep their start.
+# fmi-sim interpolates linearly between rows; inputs not in the file (cy, spin, T_bulk, aux*)
+# keep their start values.
 cat > "$WORK/input.csv" <<'CSV'
 time,cx,v,FN
 0.0,0.002,20.0,110000.0
