@@ -6,13 +6,45 @@
 # Needs: cargo, the Python venv of scripts/setup-venv.sh (ziglang, cargo-zigbuild, fmpy),
 # libclang (bindgen of fmi-sys), binutils. Set ECF_FMU_NATIVE=1 to link with the host's
 # toolchain instead of zig (no glibc-2.17 guarantee; for quick local iterations).
+#
+# Binaries for other platforms, built elsewhere (docs/fmu.md, "Windows and macOS"), are packed
+# beside linux64: `--binary win64=PATH/ecf_contact.dll`, `--binary darwin64=PATH/libecf_contact.dylib`
+# (repeatable; also ECF_FMU_EXTRA_BINARIES="win64=... darwin64=..."). Each is checked for the
+# platform's file format (PE / Mach-O) and stored as binaries/<platform>/ecf_contact.<ext>.
+# ECF_FMU_OUT=PATH writes the FMU elsewhere than dist/ecf_contact.fmu.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 ID=ecf_contact
 TARGET=x86_64-unknown-linux-gnu
 GLIBC_MAX=2.17
-OUT="$ROOT/dist/$ID.fmu"
+OUT="${ECF_FMU_OUT:-$ROOT/dist/$ID.fmu}"
+
+EXTRA=()
+for b in ${ECF_FMU_EXTRA_BINARIES:-}; do EXTRA+=("$b"); done
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --binary) [ $# -ge 2 ] || { echo "build-fmu: --binary needs PLATFORM=PATH" >&2; exit 2; }
+              EXTRA+=("$2"); shift 2 ;;
+    --binary=*) EXTRA+=("${1#--binary=}"); shift ;;
+    *) echo "build-fmu: unknown argument '$1' (accepted: --binary PLATFORM=PATH)" >&2; exit 2 ;;
+  esac
+done
+# check every extra binary before building anything
+for b in ${EXTRA[@]+"${EXTRA[@]}"}; do
+  plat=${b%%=*}; path=${b#*=}
+  case "$plat" in
+    win64|win32) ext=dll; magic=4d5a ;;                       # "MZ" (PE)
+    darwin64) ext=dylib; magic='cffaedfe|cafebabe' ;;          # Mach-O 64-bit / universal
+    linux32) ext=so; magic=7f454c46 ;;                         # ELF
+    *) echo "build-fmu: --binary $b: platform '$plat' (accepted: win64, win32, darwin64, linux32)" >&2; exit 2 ;;
+  esac
+  [ "$b" != "$plat" ] && [ -f "$path" ] || { echo "build-fmu: --binary $b: '$path' is not a file" >&2; exit 2; }
+  head4=$(head -c 4 "$path" | od -An -tx1 | tr -d ' \n')
+  if ! echo "$head4" | grep -Eq "^($magic)"; then
+    echo "build-fmu: --binary $b: not a $plat shared library ($ext; first bytes $head4)" >&2; exit 2
+  fi
+done
 
 bash scripts/setup-venv.sh >&2
 export PATH="$ROOT/.venv/bin:$PATH"
@@ -56,21 +88,21 @@ fi
 # --- pack ----------------------------------------------------------------------------------
 STAGE="$ROOT/target/fmu-stage/$ID"
 rm -rf "$STAGE"
-mkdir -p "$STAGE/binaries/linux64" "$STAGE/resources/presets" "$STAGE/documentation" "$ROOT/dist"
+mkdir -p "$STAGE/binaries/linux64" "$STAGE/resources/presets" "$STAGE/documentation" "$(dirname "$OUT")"
 cp modelDescription/modelDescription.xml "$STAGE/"
 cp "$SO" "$STAGE/binaries/linux64/$ID.so"
 cp creep-core/presets/*.json "$STAGE/resources/presets/"
-if [ -f docs/fmu.md ]; then
-  cp docs/fmu.md "$STAGE/documentation/"
-  python3 - "$STAGE/documentation" <<'PY'
-import html, pathlib, sys
-d = pathlib.Path(sys.argv[1])
-text = (d / "fmu.md").read_text()
-(d / "index.html").write_text(
-    "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>ecf_contact FMU</title></head>"
-    "<body><pre>" + html.escape(text) + "</pre></body></html>\n")
-PY
-fi
+cp fmu-crate/assets/model.png "$STAGE/model.png"
+for b in ${EXTRA[@]+"${EXTRA[@]}"}; do
+  plat=${b%%=*}; path=${b#*=}
+  case "$plat" in win*) ext=dll ;; darwin*) ext=dylib ;; *) ext=so ;; esac
+  mkdir -p "$STAGE/binaries/$plat"
+  cp "$path" "$STAGE/binaries/$plat/$ID.$ext"
+  echo "build-fmu: packed $path as binaries/$plat/$ID.$ext" >&2
+done
+# documentation/index.html: docs/fmu.md rendered to HTML (pulldown-cmark), the markdown beside it
+cp docs/fmu.md "$STAGE/documentation/"
+cargo run -q --release -p ecf-fmu --example render_doc -- docs/fmu.md "$STAGE/documentation/index.html" >&2
 rm -f "$OUT"
 python3 - "$STAGE" "$OUT" <<'PY'
 import os, sys, zipfile

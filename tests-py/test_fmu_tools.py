@@ -1,6 +1,7 @@
 """The FMU as commercial tools use it: every start value written before the preset (Dymola, SIMPACK), single material overrides, a fitted configuration with a data column fed from an auxiliary input, and its state restored in a fresh instance."""
 
 import json
+import os
 import subprocess
 
 import pytest
@@ -196,3 +197,27 @@ def test_unmapped_column_names_the_parameter(md, unzipdir, repo_root):
     with pytest.raises(FMICallException):
         s.exitInitializationMode()
     s.freeInstance()
+
+
+def test_package_has_icon_html_documentation_and_extra_platform_binaries(fmu_path, repo_root, tmp_path):
+    import zipfile
+    with zipfile.ZipFile(fmu_path) as z:
+        names = z.namelist()
+        assert "model.png" in names and z.read("model.png")[:8] == b"\x89PNG\r\n\x1a\n"
+        page = z.read("documentation/index.html").decode()
+    # real HTML, not the markdown in <pre>: headings, tables
+    assert "<h2>Variables</h2>" in page and "<table>" in page and "<pre><code" in page
+    # a win64 binary built elsewhere is packed beside linux64 (here a stand-in with the PE magic)
+    dll = tmp_path / "ecf_contact.dll"
+    dll.write_bytes(b"MZ" + b"\0" * 62)
+    out = tmp_path / "multi.fmu"
+    env = dict(os.environ, ECF_FMU_OUT=str(out))
+    run = subprocess.run(["bash", "scripts/build-fmu.sh", "--binary", f"win64={dll}"], cwd=repo_root,
+                         env=env, capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr[-2000:]
+    with zipfile.ZipFile(out) as z:
+        assert {"binaries/linux64/ecf_contact.so", "binaries/win64/ecf_contact.dll"} <= set(z.namelist())
+    # a file of the wrong format is refused before anything is built
+    bad = subprocess.run(["bash", "scripts/build-fmu.sh", "--binary", f"darwin64={dll}"], cwd=repo_root,
+                         env=env, capture_output=True, text=True)
+    assert bad.returncode == 2 and "not a darwin64 shared library" in bad.stderr, bad.stderr
