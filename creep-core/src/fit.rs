@@ -440,6 +440,10 @@ pub struct FitOptions<'a> {
     /// Look model values up in this memo and add the computed ones
     /// ([`crate::evaluate::predict_with`]); the result is bit-identical.
     pub memo: Option<&'a Memo>,
+    /// Relative tolerances of the solver's convergence tests (`ftol`: reduction of the sum of
+    /// squares, `xtol`: step relative to the scaled parameters); `None`: the solver's
+    /// default, 30 machine epsilons. A looser tolerance stops the same iterations earlier.
+    pub tolerance: Option<f64>,
 }
 
 /// Like [`fit_params`], with options.
@@ -535,9 +539,11 @@ pub fn fit_generic_with(
         error: std::cell::RefCell::new(None),
         last: std::cell::RefCell::new(None),
     };
-    let (problem, report) = LevenbergMarquardt::new()
-        .with_patience(30)
-        .minimize(problem);
+    let mut lm = LevenbergMarquardt::new().with_patience(30);
+    if let Some(t) = opts.tolerance {
+        lm = lm.with_ftol(t).with_xtol(t);
+    }
+    let (problem, report) = lm.minimize(problem);
     if let Some(e) = problem.error.borrow_mut().take() {
         return Err(match e {
             CreepError::Fit(m) => CreepError::Fit(m),

@@ -1,7 +1,7 @@
 //! The shortcuts of `diagnose` change nothing: memoised predictions and fits are bit-identical to the plain ones, and the diagnosis does not depend on the number of threads.
 mod common;
 use common::*;
-use creep_core::diagnose::diagnose;
+use creep_core::diagnose::{diagnose, diagnose_with};
 use creep_core::evaluate::{predict, predict_with, Memo};
 use creep_core::fit::{default_free, fit_params, fit_params_with, FitOptions, FreeParam};
 use creep_core::formula::{FormulaEffect, Target};
@@ -87,6 +87,7 @@ fn memoised_fit_without_uncertainties_gives_the_same_fit() {
     let opts = FitOptions {
         skip_uncertainties: true,
         memo: Some(&memo),
+        tolerance: None,
     };
     let fast = fit_params_with(&cfg, &data, &free, 1, &opts, &|_| {}).unwrap();
     let values =
@@ -120,4 +121,28 @@ fn diagnosis_does_not_depend_on_the_thread_count() {
     );
     assert_eq!(a, b);
     assert!(!one.candidates.is_empty());
+}
+
+#[test]
+fn the_looser_fit_tolerance_changes_no_printed_figure() {
+    let data = humid();
+    let cfg = with_grid(preset("dry"), 10, 5);
+    let strict = diagnose_with(&cfg, &data, 2, None, &|_| {}).unwrap();
+    let loose = diagnose(&cfg, &data, 2, &|_| {}).unwrap();
+    assert_eq!(strict.missing_effect, loose.missing_effect);
+    assert_eq!(strict.candidates.len(), loose.candidates.len());
+    // printed with two decimals: the differences are far below 0.005
+    let close = |a: f64, b: f64, what: &str| {
+        assert!((a - b).abs() < 1e-3, "{what}: {a} vs {b}");
+    };
+    close(
+        strict.baseline_heldout_cv_rmse_pct,
+        loose.baseline_heldout_cv_rmse_pct,
+        "baseline held-out",
+    );
+    for (s, l) in strict.candidates.iter().zip(&loose.candidates) {
+        assert_eq!(s.effect, l.effect, "ranking");
+        close(s.heldout_cv_rmse_pct, l.heldout_cv_rmse_pct, &s.effect);
+        close(s.fitted_cv_rmse_pct, l.fitted_cv_rmse_pct, &s.effect);
+    }
 }
