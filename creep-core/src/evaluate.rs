@@ -266,13 +266,74 @@ fn point_key(cfg: &Config, cols: &[usize], r: &Row) -> Vec<u64> {
     k
 }
 
+/// Steady predictions already computed, by configuration and operating point: a fit, the
+/// folds of a cross-validation and the Jacobians of their solvers evaluate many
+/// configurations more than once (the start, the best point, ...) on overlapping rows;
+/// [`predict_with`] looks those up instead of running the model again.
+///
+/// A configuration is identified by the full text of its `Debug` form (every field, floating
+/// point numbers written so that they read back bit for bit) plus the names of its Rust
+/// effects, an operating point by the exact bits of the row's inputs that the model sees (as
+/// [`predict`] merges rows). A steady prediction depends on nothing else, so a looked-up
+/// value is bit-identical to a recomputed one. Time series rows (stateful) are never
+/// memoised.
+#[derive(Debug, Default)]
+pub struct Memo {
+    inner: std::sync::Mutex<MemoInner>,
+}
+
+#[derive(Debug, Default)]
+struct MemoInner {
+    configs: std::collections::HashMap<String, usize>,
+    points: std::collections::HashMap<(usize, Vec<u64>), Prediction>,
+    hits: usize,
+    misses: usize,
+}
+
+impl Memo {
+    /// An empty memo.
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// (operating points looked up, operating points evaluated) so far.
+    pub fn counts(&self) -> (usize, usize) {
+        let m = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+        (m.hits, m.misses)
+    }
+    fn lock(&self) -> std::sync::MutexGuard<'_, MemoInner> {
+        self.inner.lock().unwrap_or_else(|e| e.into_inner())
+    }
+    fn config_id(&self, cfg: &Config) -> usize {
+        let mut key = format!("{cfg:?}");
+        for u in &cfg.custom {
+            key.push('|');
+            key.push_str(u.effect.name());
+        }
+        let mut m = self.lock();
+        let n = m.configs.len();
+        *m.configs.entry(key).or_insert(n)
+    }
+}
+
 /// Predictions for every row (in row order), computed on `threads` threads. Steady rows that
 /// share an operating point (creepages, speed, load, temperature, semi-axes and the data
 /// columns the configuration's formula/Rust effects use) are evaluated once. Fails, naming
 /// the rows, when a formula or Rust effect's factor is not finite or negative, or when the
 /// model's traction coefficient is not finite.
 pub fn predict(cfg: &Config, data: &Dataset, threads: usize) -> Result<Vec<Prediction>> {
+    predict_with(cfg, data, threads, None)
+}
+
+/// [`predict`], looking steady operating points up in `memo` (and adding the ones computed).
+/// The result is bit-identical to [`predict`]'s.
+pub fn predict_with(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    memo: Option<&Memo>,
+) -> Result<Vec<Prediction>> {
     check_columns(cfg, data)?;
+    let cfg_id = memo.map(|m| m.config_id(cfg));
     // extra columns that change the model: those the effects use
     let used: Vec<usize> = (0..data.extra_names.len())
         .filter(|&k| {
@@ -284,6 +345,9 @@ pub fn predict(cfg: &Config, data: &Dataset, threads: usize) -> Result<Vec<Predi
     let mut series: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
     let mut unique: std::collections::HashMap<Vec<u64>, usize> = std::collections::HashMap::new();
     let mut of_row = vec![usize::MAX; data.rows.len()];
+    // per unique operating point: its key (memo only) and its prediction when looked up
+    let mut keys: Vec<Vec<u64>> = Vec::new();
+    let mut by_point: Vec<Option<Prediction>> = Vec::new();
     let mut bad: BTreeMap<String, (Vec<usize>, f64)> = BTreeMap::new();
     for (i, r) in data.rows.iter().enumerate() {
         if r.t.is_some() {
@@ -297,9 +361,19 @@ pub fn predict(cfg: &Config, data: &Dataset, threads: usize) -> Result<Vec<Predi
         }
         let key = point_key(cfg, &used, r);
         let n = unique.len();
+        let known = match (memo, cfg_id) {
+            (Some(m), Some(id)) if !unique.contains_key(&key) => {
+                keys.push(key.clone());
+                m.lock().points.get(&(id, key.clone())).copied()
+            }
+            _ => None,
+        };
         let u = *unique.entry(key).or_insert(n);
         if u == n {
-            jobs.push(Job::Steady(i));
+            by_point.push(known);
+            if known.is_none() {
+                jobs.push(Job::Steady(i));
+            }
             if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
                 if let Some((e, x)) = bad_factor(cfg, data, r) {
                     bad.entry(e).or_insert((Vec::new(), x)).0.push(r.line);
@@ -351,27 +425,31 @@ pub fn predict(cfg: &Config, data: &Dataset, threads: usize) -> Result<Vec<Predi
         }
     });
     let mut pred = vec![Prediction::default(); data.rows.len()];
-    let mut by_point: Vec<Prediction> = Vec::new();
-    let mut point_of_rep: std::collections::HashMap<usize, Prediction> =
-        std::collections::HashMap::new();
+    let looked_up = by_point.iter().filter(|p| p.is_some()).count();
+    let mut computed = Vec::new();
     for r in results {
         for (i, p) in r? {
             if data.rows[i].t.is_some() {
                 pred[i] = p;
             } else {
-                point_of_rep.insert(of_row[i], p);
+                by_point[of_row[i]] = Some(p);
+                computed.push(of_row[i]);
             }
         }
     }
-    if !point_of_rep.is_empty() {
-        by_point.resize(point_of_rep.len(), Prediction::default());
-        for (u, p) in point_of_rep {
-            by_point[u] = p;
-        }
-        for (i, r) in data.rows.iter().enumerate() {
-            if r.t.is_none() {
-                pred[i] = by_point[of_row[i]];
+    if let (Some(m), Some(id)) = (memo, cfg_id) {
+        let mut m = m.lock();
+        m.hits += looked_up;
+        m.misses += computed.len();
+        for u in computed {
+            if let Some(p) = by_point[u] {
+                m.points.insert((id, keys[u].clone()), p);
             }
+        }
+    }
+    for (i, r) in data.rows.iter().enumerate() {
+        if r.t.is_none() {
+            pred[i] = by_point[of_row[i]].unwrap_or_default();
         }
     }
     let nonfinite: Vec<usize> = data

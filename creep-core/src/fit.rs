@@ -9,7 +9,7 @@
 use crate::config::{Config, ModelKind};
 use crate::effects::Effect;
 use crate::error::{CreepError, Result};
-use crate::evaluate::predict;
+use crate::evaluate::{predict_with, Memo};
 use crate::measure::{cv_rmse_pct, Dataset};
 use crate::params::{spec, P};
 
@@ -221,7 +221,8 @@ impl ParamStatus {
 /// Result of a fit.
 #[derive(Clone, Debug)]
 pub struct FitResult {
-    /// Status of each free parameter (order of `params`).
+    /// Status of each free parameter (order of `params`); empty when the fit skipped the
+    /// uncertainties ([`FitOptions::skip_uncertainties`]).
     pub status: Vec<ParamStatus>,
     /// Warnings: fitted values outside their plausible physical range, solver stops that are
     /// not convergence.
@@ -234,7 +235,7 @@ pub struct FitResult {
     pub cv_rmse_pct_after: f64,
     /// Free parameters: (name, start value, fitted value, standard error), display units.
     pub params: Vec<(String, f64, f64, f64)>,
-    /// Correlation matrix of the free parameters.
+    /// Correlation matrix of the free parameters (empty when the uncertainties were skipped).
     pub correlation: Vec<Vec<f64>>,
     /// Residual evaluations used.
     pub evaluations: usize,
@@ -311,6 +312,9 @@ struct Problem<'a> {
     progress: &'a (dyn Fn(usize) + Sync),
     evals: std::cell::Cell<usize>,
     error: std::cell::RefCell<Option<CreepError>>,
+    /// The last point evaluated and its residuals: the Jacobian at the current point reuses
+    /// them (the solver asks for the residuals at a point before the Jacobian there).
+    last: std::cell::RefCell<Option<(DVector<f64>, DVector<f64>)>>,
 }
 
 impl Problem<'_> {
@@ -339,10 +343,10 @@ impl Problem<'_> {
                     )));
                     return None;
                 }
-                Some(DVector::from_iterator(
-                    p.len(),
-                    p.iter().zip(&self.meas).map(|(m, y)| m - y),
-                ))
+                let r =
+                    DVector::from_iterator(p.len(), p.iter().zip(&self.meas).map(|(m, y)| m - y));
+                *self.last.borrow_mut() = Some((z.clone(), r.clone()));
+                Some(r)
             }
             Err(e) => {
                 *self.error.borrow_mut() = Some(e);
@@ -377,7 +381,19 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         self.residuals_at(&self.z)
     }
     fn jacobian(&self) -> Option<DMatrix<f64>> {
-        let r0 = self.residuals_at(&self.z)?;
+        // the residuals at the current point: those of the last evaluation when it was at
+        // exactly this point (bit for bit), as the model is a function of the point alone
+        let cached = self.last.borrow().as_ref().and_then(|(z, r)| {
+            let same = z.len() == self.z.len()
+                && z.iter()
+                    .zip(self.z.iter())
+                    .all(|(a, b)| a.to_bits() == b.to_bits());
+            same.then(|| r.clone())
+        });
+        let r0 = match cached {
+            Some(r) => r,
+            None => self.residuals_at(&self.z)?,
+        };
         let mut j = DMatrix::zeros(r0.len(), self.z.len());
         for k in 0..self.z.len() {
             let h = 1e-3 * self.z[k].abs().max(1.0);
@@ -411,11 +427,43 @@ pub fn fit_params(
     threads: usize,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<FitResult> {
+    fit_params_with(cfg, data, free, threads, &FitOptions::default(), progress)
+}
+
+/// How a fit runs beyond its free parameters (the default: as [`fit_params`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FitOptions<'a> {
+    /// Skip the standard errors and correlations (two model evaluations per free parameter
+    /// at the optimum): `status` and `correlation` of the result are then empty and the
+    /// standard errors NaN. The fitted values are the same.
+    pub skip_uncertainties: bool,
+    /// Look model values up in this memo and add the computed ones
+    /// ([`crate::evaluate::predict_with`]); the result is bit-identical.
+    pub memo: Option<&'a Memo>,
+    /// Relative tolerances of the solver's convergence tests (`ftol`: reduction of the sum of
+    /// squares, `xtol`: step relative to the scaled parameters); `None`: the solver's
+    /// default, 30 machine epsilons. A looser tolerance stops the same iterations earlier.
+    pub tolerance: Option<f64>,
+}
+
+/// Like [`fit_params`], with options.
+pub fn fit_params_with(
+    cfg: &Config,
+    data: &Dataset,
+    free: &[FreeParam],
+    threads: usize,
+    opts: &FitOptions,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<FitResult> {
     let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
+    let memo = opts.memo;
     let model = |c: &Config| -> Result<Vec<f64>> {
-        Ok(predict(c, data, threads)?.iter().map(|p| p.f).collect())
+        Ok(predict_with(c, data, threads, memo)?
+            .iter()
+            .map(|p| p.f)
+            .collect())
     };
-    fit_generic(cfg, &data.source, &meas, &model, free, progress)
+    fit_generic_with(cfg, &data.source, &meas, &model, free, opts, progress)
 }
 
 /// Bounded least squares of `model(cfg)` against `meas` over the free parameters.
@@ -425,6 +473,27 @@ pub fn fit_generic(
     meas: &[f64],
     model: ModelFn,
     free: &[FreeParam],
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<FitResult> {
+    fit_generic_with(
+        cfg,
+        source,
+        meas,
+        model,
+        free,
+        &FitOptions::default(),
+        progress,
+    )
+}
+
+/// [`fit_generic`] with options (`opts.memo` is not used here: `model` is the caller's).
+pub fn fit_generic_with(
+    cfg: &Config,
+    source: &str,
+    meas: &[f64],
+    model: ModelFn,
+    free: &[FreeParam],
+    opts: &FitOptions,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<FitResult> {
     if free.is_empty() {
@@ -468,10 +537,13 @@ pub fn fit_generic(
         progress,
         evals: std::cell::Cell::new(0),
         error: std::cell::RefCell::new(None),
+        last: std::cell::RefCell::new(None),
     };
-    let (problem, report) = LevenbergMarquardt::new()
-        .with_patience(30)
-        .minimize(problem);
+    let mut lm = LevenbergMarquardt::new().with_patience(30);
+    if let Some(t) = opts.tolerance {
+        lm = lm.with_ftol(t).with_xtol(t);
+    }
+    let (problem, report) = lm.minimize(problem);
     if let Some(e) = problem.error.borrow_mut().take() {
         return Err(match e {
             CreepError::Fit(m) => CreepError::Fit(m),
@@ -506,8 +578,11 @@ pub fn fit_generic(
         )));
     }
     let values: Vec<f64> = free.iter().map(|id| id.get(&fitted)).collect();
-    let (status, stderr, corr, evals) =
-        uncertainties(&fitted, meas, &model_values, model, free, &start)?;
+    let (status, stderr, corr, evals) = if opts.skip_uncertainties {
+        (Vec::new(), vec![f64::NAN; free.len()], Vec::new(), 0)
+    } else {
+        uncertainties(&fitted, meas, &model_values, model, free, &start)?
+    };
     for (k, id) in free.iter().enumerate() {
         if let Some((lo, hi)) = id.plausible() {
             if values[k] < lo || values[k] > hi {

@@ -127,6 +127,13 @@ enum Cmd {
     },
 }
 
+/// The number of cores this process may run on (its CPU affinity), at least 1.
+fn default_threads() -> usize {
+    std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
+}
+
 #[derive(Args, Clone)]
 struct DataArgs {
     /// Measurement CSV (columns cx, f [, series, condition, v_mps, fn_kN, a_mm, b_mm, cy, cs_per_m, t_s, t_bulk_C, extra numeric columns])
@@ -140,8 +147,8 @@ struct DataArgs {
     /// Bristle grid NXxNY (overrides the configuration's)
     #[arg(long)]
     grid: Option<String>,
-    /// Worker threads
-    #[arg(long, default_value_t = 2)]
+    /// Worker threads (default: the cores this process may run on; results do not depend on it)
+    #[arg(long, default_value_t = default_threads())]
     threads: usize,
     /// Speed of every row, m/s, for a data file without a speed column (no silent default)
     #[arg(long)]

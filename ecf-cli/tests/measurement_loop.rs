@@ -221,3 +221,26 @@ fn diagnose_with_every_catalogue_effect_on_says_so() {
     assert!(!out.contains("candidate effects"), "{out}");
     assert!(!out.contains("try a formula effect"), "{out}");
 }
+
+#[test]
+fn diagnose_report_does_not_depend_on_the_thread_count() {
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/measurements/humid.csv"
+    );
+    let run = |threads: Option<&str>| {
+        let mut a = vec![
+            "diagnose", data, "--preset", "dry", "--grid", "8x3", "--quiet", "--json",
+        ];
+        if let Some(t) = threads {
+            a.extend(["--threads", t]);
+        }
+        let (code, out, err) = ecf(&a);
+        assert_eq!(code, 0, "{err}");
+        out
+    };
+    let one = run(Some("1"));
+    assert!(one.contains("\"candidates\""), "{one}");
+    assert_eq!(one, run(Some("3")));
+    assert_eq!(one, run(None));
+}
