@@ -1,4 +1,5 @@
-//! Prints the cost of transient ECF (dry, c_x = 15 % with a small wobble, F_N = 110 kN) per grid, speed and communication step: median wall time per step and wall time / simulated time.
+//! Prints the cost of transient ECF (dry, c_x = 15 % with a small wobble, F_N = 110 kN) per grid, speed and communication step: wall time / simulated time. Args: [simulated s] [threads] [cells|continuous].
+use creep_core::engine::Scheme;
 use creep_core::{Config, Grid, Inputs, Model};
 use std::time::Instant;
 
@@ -7,6 +8,15 @@ fn main() {
         .nth(1)
         .and_then(|s| s.parse().ok())
         .unwrap_or(0.05);
+    let threads: usize = std::env::args()
+        .nth(2)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
+    let scheme = match std::env::args().nth(3).as_deref() {
+        Some("continuous") => Scheme::Continuous,
+        _ => Scheme::CellsMarch,
+    };
+    println!("({threads} thread(s), scheme {scheme:?})");
     println!("| grid | v (m/s) | step 0.1 ms | step 0.25 ms | step 1 ms |");
     println!("|---|---|---|---|---|");
     for (nx, ny) in [(16, 9), (20, 11), (40, 21), (80, 21)] {
@@ -16,6 +26,8 @@ fn main() {
                 let mut c = Config::preset("dry").expect("preset");
                 c.grid = Grid { nx, ny };
                 let mut m = Model::new(&c).expect("model");
+                m.set_threads(threads).expect("threads");
+                m.set_scheme(scheme);
                 let i = Inputs {
                     cx: 0.15,
                     v,
@@ -41,5 +53,5 @@ fn main() {
             println!("{row}");
         }
     }
-    println!("(wall time / simulated time, one contact, one core; < 1 is faster than real time)");
+    println!("(wall time / simulated time, one contact; < 1 is faster than real time)");
 }

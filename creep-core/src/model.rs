@@ -122,6 +122,13 @@ impl Model {
         }
     }
 
+    /// How a step advances the bristles (see [`crate::engine::Scheme`]; Polach has none).
+    pub fn set_scheme(&mut self, scheme: crate::engine::Scheme) {
+        if let Model::Bristle(c) = self {
+            c.set_scheme(scheme);
+        }
+    }
+
     /// Warnings since the last call (drained).
     pub fn take_warnings(&mut self) -> Vec<String> {
         match self {

@@ -224,6 +224,8 @@ pub struct Settings {
     pub ny: Option<usize>,
     /// Threads that advance the strips (0 or 1: the calling thread).
     pub threads: usize,
+    /// How a step advances the bristles: 0 cell by cell, 1 continuous.
+    pub scheme: i32,
     /// Geometry mode: 0 configuration, 1 semi-axes, 2 curvatures.
     pub geometry: i32,
     /// Geometry values set by the importer (a_ref, b_ref, FN_ref, Rx, Ry), SI.
@@ -1035,6 +1037,9 @@ impl Instance {
         if v.slot == Slot::Threads {
             return Ok(self.settings.threads.max(1) as i32);
         }
+        if v.slot == Slot::Scheme {
+            return Ok(self.settings.scheme);
+        }
         match self.config() {
             Ok(c) => Ok(if v.slot == Slot::Nx {
                 c.grid.nx
@@ -1166,7 +1171,10 @@ impl Instance {
                     return refuse(self, format!("must be finite and > 0 {unit}"));
                 }
             }
-            (Slot::GeometryMode | Slot::Nx | Slot::Ny | Slot::Threads, Value::Integer(x)) => {
+            (
+                Slot::GeometryMode | Slot::Nx | Slot::Ny | Slot::Threads | Slot::Scheme,
+                Value::Integer(x),
+            ) => {
                 let (lo, hi) = (v.min.unwrap_or(0.0) as i32, v.max.unwrap_or(1e9) as i32);
                 if *x < lo || *x > hi {
                     return refuse(
@@ -1256,6 +1264,7 @@ impl Instance {
             (Slot::Nx, Value::Integer(x)) => self.settings.nx = (*x > 0).then_some(*x as usize),
             (Slot::Ny, Value::Integer(x)) => self.settings.ny = (*x > 0).then_some(*x as usize),
             (Slot::Threads, Value::Integer(x)) => self.settings.threads = (*x).max(1) as usize,
+            (Slot::Scheme, Value::Integer(x)) => self.settings.scheme = *x,
             (Slot::Effect(e), Value::Boolean(x)) => {
                 if v.start == Start::Boolean(*x) {
                     self.settings.effects.remove(&e);
@@ -1316,12 +1325,18 @@ impl Instance {
     }
 
     /// fmi2SetFMUstate: restores a snapshot.
-    /// Gives the model the importer's `threads` (not part of a state: it does not change
-    /// results).
+    /// Gives the model the importer's `threads` and `scheme` (settings of the instance, not
+    /// of a state: they say how to compute, not what).
     fn apply_threads(&mut self) -> Result<(), String> {
-        let n = self.settings.threads.max(1);
+        let (n, scheme) = (
+            self.settings.threads.max(1),
+            scheme_of(self.settings.scheme),
+        );
         match self.model.as_mut() {
-            Some(m) => m.set_threads(n).map_err(|e| e.to_string()),
+            Some(m) => {
+                m.set_scheme(scheme);
+                m.set_threads(n).map_err(|e| e.to_string())
+            }
             None => Ok(()),
         }
     }
@@ -1339,14 +1354,18 @@ impl Instance {
                 self.phase.name()
             ));
         }
-        // the importer's threads stay (a serialized state does not carry them)
-        let threads = self.settings.threads;
+        // the importer's threads and scheme stay (a serialized state does not carry them)
+        let (threads, scheme) = (self.settings.threads, self.settings.scheme);
         let mut model = s.model.clone();
-        if let Some(Err(e)) = model.as_mut().map(|m| m.set_threads(threads.max(1))) {
-            return self.error(format!("{F}: {e}; the instance is unchanged"));
+        if let Some(m) = model.as_mut() {
+            m.set_scheme(scheme_of(scheme));
+            if let Err(e) = m.set_threads(threads.max(1)) {
+                return self.error(format!("{F}: {e}; the instance is unchanged"));
+            }
         }
         self.settings = s.settings.clone();
         self.settings.threads = threads;
+        self.settings.scheme = scheme;
         self.inputs = s.inputs;
         self.time = s.time;
         self.cfg = s.cfg.clone();
@@ -1379,6 +1398,15 @@ pub fn effect_index(e: Effect) -> u8 {
 /// Effect of a catalogue index.
 pub fn effect_of(i: u8) -> Option<Effect> {
     effects::CATALOGUE.get(i as usize).map(|i| i.effect)
+}
+
+/// The engine's scheme for the FMU parameter `scheme` (0 cells, 1 continuous).
+fn scheme_of(x: i32) -> creep_core::engine::Scheme {
+    if x == 1 {
+        creep_core::engine::Scheme::Continuous
+    } else {
+        creep_core::engine::Scheme::CellsMarch
+    }
 }
 
 /// Parameter of a registry index.
@@ -1437,6 +1465,24 @@ mod tests {
         let one = run(1);
         assert_eq!(one[11], one[20], "a restored state repeats its step");
         assert_eq!(one, run(3));
+        // the continuous scheme: close to the reference, not equal to it
+        let mut i = Instance::new("t", None, false);
+        for (n, x) in [("nx", 20), ("ny", 9), ("scheme", 1)] {
+            assert_eq!(i.set_integer(vr(n), x), Status::Ok);
+        }
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        assert_eq!(i.get_integer(vr("scheme")), Ok(1));
+        let mut cont = Vec::new();
+        for k in 0..20 {
+            assert_eq!(i.set_real(vr("cx"), 0.002 + 0.01 * k as f64), Status::Ok);
+            assert_eq!(i.do_step(k as f64 * 1e-4, 1e-4), Status::Ok);
+            cont.push(i.get_real(vr("Fx")).expect("Fx"));
+        }
+        assert_ne!(cont[..20], one[..20]);
+        for (c, r) in cont.iter().zip(&one) {
+            assert!((c - r).abs() <= 0.02 * r.abs(), "{c} vs {r}");
+        }
         // out of range
         let mut i = Instance::new("t", None, false);
         assert_eq!(i.set_integer(vr("threads"), 0), Status::Error);

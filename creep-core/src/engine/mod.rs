@@ -538,6 +538,11 @@ impl Contact {
         self.scheme = scheme;
     }
 
+    /// How a step advances the bristles.
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
+    }
+
     /// Grid size (nx, ny actually used; a line contact has one strip).
     pub fn grid_size(&self) -> (usize, usize) {
         (self.nx, self.ny)
