@@ -16,9 +16,10 @@
 //! inputs (tested bit for bit).
 //!
 //! Where each job lives: this file holds the contact's state and the time loop (`step`,
-//! `steady`, state plumbing); [`io`] the inputs and outputs; `advance` one bristle move and
-//! the sub-step loop and march; `grid` the integrals and fields; `modifiers` the formula and
-//! custom effects. The material law is [`crate::material`], the temperature solve and heat
+//! `steady`, state plumbing); [`io`] the inputs and outputs; `strip` one strip as a unit of
+//! work (its state borrowed out of the contact, the strips of a step on `threads` threads)
+//! and the cell-by-cell scheme; `advance` one bristle move, the sub-step loop and march;
+//! `grid` the integrals and fields; `modifiers` the formula and custom effects. The material law is [`crate::material`], the temperature solve and heat
 //! kernel [`crate::thermal`], the Hertz patch [`crate::hertz`].
 
 mod advance;

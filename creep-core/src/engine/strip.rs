@@ -36,7 +36,9 @@ impl Strip<'_> {
 
 impl Contact {
     /// Runs `f` on every strip, on the contact's threads when it has them (results do not
-    /// depend on the number of threads: strips share no mutable state).
+    /// depend on the number of threads: strips share no mutable state). While `f` runs, the
+    /// contact's per-strip vectors (`st`, `acc`, `head`, `phase`, caches) are moved into the
+    /// strips: `f` reaches them through its [`Strip`] only, never through the contact.
     pub(super) fn each_strip(&mut self, f: impl Fn(&Contact, &mut Strip) + Sync) {
         let nx1 = self.nx + 1;
         let mut st = std::mem::take(&mut self.st);
