@@ -71,7 +71,8 @@ pub struct Diagnosis {
     pub missing_effect: Option<String>,
     /// One-paragraph verdict in words.
     pub verdict: String,
-    /// True when every catalogue effect is already in the configuration.
+    /// True when every catalogue effect that applies to the data (Coulomb aside; the
+    /// wheel-slide effect only for rows with |1 + c_x| < 0.5) is already in the configuration.
     pub catalogue_all_on: bool,
 }
 
@@ -240,6 +241,7 @@ fn signature(e: Effect) -> &'static [&'static str] {
         Effect::LayerElasticity => &["cx"],
         Effect::VocePlasticity => &["cx"],
         Effect::Transient | Effect::ElasticUnloading => &["dcx_dt_per_s"],
+        Effect::SurfaceTimeFlash => &["cx", "model_T_max_C"],
         Effect::Coulomb => &["cx"],
     }
 }
@@ -315,9 +317,15 @@ pub fn diagnose_with(
     let mut catalogue_all_on = false;
     if cfg.model != ModelKind::Polach && !cfg.has(Effect::Coulomb) {
         let has_series = data.rows.iter().any(|r| r.t.is_some());
-        catalogue_all_on = effects::CATALOGUE
-            .iter()
-            .all(|i| i.effect == Effect::Coulomb || cfg.has(i.effect));
+        // the wheel-slide effect differs from the seed's form by sqrt(v / v_w) only: it is a
+        // candidate where rows slide (|1 + c_x| < 0.5) with temperature on
+        let slide =
+            cfg.has(Effect::Temperature) && data.rows.iter().any(|r| (1.0 + r.cx).abs() < 0.5);
+        catalogue_all_on = effects::CATALOGUE.iter().all(|i| {
+            i.effect == Effect::Coulomb
+                || cfg.has(i.effect)
+                || (i.effect == Effect::SurfaceTimeFlash && !slide)
+        });
         for info in effects::CATALOGUE {
             let e = info.effect;
             if cfg.has(e) || e == Effect::Coulomb {
@@ -325,6 +333,9 @@ pub fn diagnose_with(
             }
             if matches!(e, Effect::Transient | Effect::ElasticUnloading) && !has_series {
                 continue; // no time series: these effects cannot show in steady data
+            }
+            if e == Effect::SurfaceTimeFlash && !slide {
+                continue;
             }
             progress(info.name);
             let mut c = cfg.clone();

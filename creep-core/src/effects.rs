@@ -22,6 +22,8 @@ pub enum Effect {
     Transient,
     /// Elastic unloading with stored hardening (incremental plasticity).
     ElasticUnloading,
+    /// Flash temperature over the wheel surface's own time in the contact (wheel slide).
+    SurfaceTimeFlash,
 }
 
 /// Catalogue entry of an effect.
@@ -79,6 +81,12 @@ pub const CATALOGUE: &[EffectInfo] = &[
         effect: Effect::ElasticUnloading,
         name: "elastic_unloading",
         description: "Unloading rule variant: a plastically deformed bristle whose load decreases unloads elastically along the layer-plus-body stiffness and keeps its hardening (incremental plasticity with radial return and a stored Voce hardening variable), instead of retracing the loading characteristic (the seed-faithful default). It matters when the creepage oscillates or reverses.",
+        params: &[],
+    },
+    EffectInfo {
+        effect: Effect::SurfaceTimeFlash,
+        name: "surface_time_flash",
+        description: "The wheel's flash temperature over the time a point of the wheel surface spends in the contact, x / v_w with v_w = v |1 + c_x|, instead of the layer's time x / v in which the seed evaluates Eq. 4.34. With Blok's partition (Eq. 4.30) this is the same temperature as the rail side's formula with the rail's share of the heat, so it stays finite down to a locked wheel (c_x = -1), where the seed's form sends all heat into the rail and reports no temperature rise at all. Identical to the seed at c_x = 0; the temperature rise differs by sqrt(v / v_w): 12 % lower at c_x = +0.3, 20 % higher at -0.3. For wheel slide and hard braking; off: the seed's form.",
         params: &[],
     },
 ];

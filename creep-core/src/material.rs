@@ -15,6 +15,7 @@ pub(crate) struct Resolved {
     pub pressure: bool,
     pub temperature: bool,
     pub transient: bool,
+    pub surface_time: bool,
     pub rule: Rule,
     pub parabolic: bool,
     pub mu: f64,
@@ -50,6 +51,7 @@ impl Resolved {
             pressure: c.has(Effect::PressureDependence),
             temperature: c.has(Effect::Temperature),
             transient: c.has(Effect::Transient),
+            surface_time: c.has(Effect::SurfaceTimeFlash),
             // FASTSIM's clip onto the Coulomb bound is a radial return along the trial
             // stress: the elastic-unloading rule with tau_c1 = tau_c2 = mu p.
             rule: if c.has(Effect::ElasticUnloading) || c.has(Effect::Coulomb) {

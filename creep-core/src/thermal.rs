@@ -160,6 +160,28 @@ pub fn heat_partition(
     }
 }
 
+/// The partition factor of [`heat_partition`] times sqrt(v / v_w): with it, Eq. 4.34
+/// evaluated in the layer's time x / v gives the wheel surface's flash temperature over its
+/// own time in the contact, x / v_w (effect `surface_time_flash`):
+/// sqrt(v) / (sqrt(v_w) + beta sqrt(v)). Equal to alpha at v_w = v, 1/beta at v_w = 0 (the
+/// rail side's formula with all heat into the rail). Returns alpha's limit 1/(1 + beta) when
+/// v = 0.
+pub fn surface_time_partition(
+    v_w: f64,
+    v: f64,
+    lambda_w: f64,
+    kappa_w: f64,
+    lambda_r: f64,
+    kappa_r: f64,
+) -> f64 {
+    let beta = lambda_r * kappa_w.sqrt() / (lambda_w * kappa_r.sqrt());
+    let sv = v.max(0.0).sqrt();
+    if sv <= 0.0 {
+        return 1.0 / (1.0 + beta);
+    }
+    sv / (v_w.max(0.0).sqrt() + beta * sv)
+}
+
 /// Factor sqrt(kappa_w)/(lambda_w sqrt(pi)) of Eq. 4.34, K m^2 s^-1/2 / W.
 pub fn flash_factor(lambda_w: f64, kappa_w: f64) -> f64 {
     kappa_w.sqrt() / (lambda_w * PI.sqrt())

@@ -325,9 +325,9 @@ impl Contact {
                     self.warnings.push(msg);
                 }
             }
-            if (1.0 + inputs.cx).abs() < 0.1 {
+            if (1.0 + inputs.cx).abs() < 0.1 && !self.r.surface_time {
                 let msg = format!(
-                    "wheel surface speed v (1 + c_x) = {:.3} m/s is below 10 % of v (c_x = {}, wheel slide): the heat partition of Eq. 4.30 sends the heat into the rail and the seed's flash temperature (Eq. 4.34, evaluated in the layer's time) then underestimates the contact temperature by about sqrt(v_w/v), down to none for a locked wheel (docs/model.md section 11)",
+                    "wheel surface speed v (1 + c_x) = {:.3} m/s is below 10 % of v (c_x = {}, wheel slide): the heat partition of Eq. 4.30 sends the heat into the rail and the seed's flash temperature (Eq. 4.34, evaluated in the layer's time) then underestimates the contact temperature by about sqrt(v_w/v), down to none for a locked wheel; the effect surface_time_flash evaluates it over the wheel surface's own time (docs/model.md section 11)",
                     inputs.v * (1.0 + inputs.cx).abs(),
                     inputs.cx
                 );
