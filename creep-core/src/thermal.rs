@@ -139,6 +139,12 @@ impl StepFactors {
     }
 }
 
+/// beta = lambda_r sqrt(kappa_w)/(lambda_w sqrt(kappa_r)) of Eq. 4.31 (the thermal
+/// effusivities' ratio, rail over wheel).
+fn partition_beta(lambda_w: f64, kappa_w: f64, lambda_r: f64, kappa_r: f64) -> f64 {
+    lambda_r * kappa_w.sqrt() / (lambda_w * kappa_r.sqrt())
+}
+
 /// Heat partition factor alpha into the wheel (Eq. 4.30, 4.31):
 /// alpha = sqrt(v_w)/(sqrt(v_w) + beta sqrt(v)), beta = lambda_r sqrt(kappa_w)/(lambda_w sqrt(kappa_r)). `v_w` is the
 /// circumferential wheel speed, `v` the vehicle speed (m/s). Returns 0.5 when both are 0.
@@ -150,7 +156,7 @@ pub fn heat_partition(
     lambda_r: f64,
     kappa_r: f64,
 ) -> f64 {
-    let beta = lambda_r * kappa_w.sqrt() / (lambda_w * kappa_r.sqrt());
+    let beta = partition_beta(lambda_w, kappa_w, lambda_r, kappa_r);
     let num = v_w.max(0.0).sqrt();
     let den = num + beta * v.max(0.0).sqrt();
     if den <= 0.0 {
@@ -174,7 +180,7 @@ pub fn surface_time_partition(
     lambda_r: f64,
     kappa_r: f64,
 ) -> f64 {
-    let beta = lambda_r * kappa_w.sqrt() / (lambda_w * kappa_r.sqrt());
+    let beta = partition_beta(lambda_w, kappa_w, lambda_r, kappa_r);
     let sv = v.max(0.0).sqrt();
     if sv <= 0.0 {
         return 1.0 / (1.0 + beta);

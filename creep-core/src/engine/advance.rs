@@ -30,27 +30,21 @@ impl Contact {
         let i = &self.inputs;
         let heat = i.v > V_STANDSTILL && h > 0.0;
         let vw = i.v * (1.0 + i.cx).abs();
-        let alpha = if self.r.surface_time {
-            // alpha sqrt(v / v_w): Eq. 4.34 over the wheel surface's time x / v_w, written in
-            // the layer's time x / v (finite for v_w -> 0: the rail side's formula)
-            thermal::surface_time_partition(
-                vw,
-                i.v,
-                self.r.lambda_w,
-                self.r.kappa_w,
-                self.r.lambda_r,
-                self.r.kappa_r,
-            )
+        // with surface_time_flash alpha sqrt(v / v_w): Eq. 4.34 over the wheel surface's
+        // time x / v_w, written in the layer's time x / v (finite for v_w -> 0)
+        let partition = if self.r.surface_time {
+            thermal::surface_time_partition
         } else {
-            thermal::heat_partition(
-                vw,
-                i.v,
-                self.r.lambda_w,
-                self.r.kappa_w,
-                self.r.lambda_r,
-                self.r.kappa_r,
-            )
+            thermal::heat_partition
         };
+        let alpha = partition(
+            vw,
+            i.v,
+            self.r.lambda_w,
+            self.r.kappa_w,
+            self.r.lambda_r,
+            self.r.kappa_r,
+        );
         Kin {
             h,
             dist,
