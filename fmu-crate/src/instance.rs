@@ -954,7 +954,7 @@ impl Instance {
             if rebuild {
                 self.model = Some(Model::new(&cfg).map_err(|e| e.to_string())?);
             }
-            self.apply_threads()?;
+            self.apply_how_to_compute()?;
             let inputs = core_inputs(&self.inputs);
             let extra = self.extras(&cfg)?;
             if let Some(m) = self.model.as_mut() {
@@ -1327,7 +1327,7 @@ impl Instance {
     /// fmi2SetFMUstate: restores a snapshot.
     /// Gives the model the importer's `threads` and `scheme` (settings of the instance, not
     /// of a state: they say how to compute, not what).
-    fn apply_threads(&mut self) -> Result<(), String> {
+    fn apply_how_to_compute(&mut self) -> Result<(), String> {
         let (n, scheme) = (
             self.settings.threads.max(1),
             scheme_of(self.settings.scheme),
