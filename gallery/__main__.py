@@ -29,7 +29,7 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     S = dict(QUICK if a.quick else FULL)
     figs = [F for F in FIGURES if not a.only or F.key in a.only.split(",")]
-    for b in (run.ECF, run.FIELDS):
+    for b in (run.ECF,):
         if not b.exists():
             print(f"gallery: {b} not found; build it first (scripts/gallery.sh does)", file=sys.stderr)
             return 2

@@ -1,7 +1,7 @@
 """Runs the project's own programs and reads their CSV output.
 
-* ``ecf`` (ecf-cli): steady curves, creepage steps, periodic creepage, steady fields.
-* ``ecf-gallery-fields`` (gallery/fields, creep-core's public API): fields during a step.
+* ``ecf`` (ecf-cli): steady curves, creepage steps, periodic creepage, steady fields and
+  the fields during a step (``ecf step --field-at-ms``).
 * ``python -m drivetrain_demo`` (drivetrain-demo): drive-train co-simulation with the FMU.
 
 Every ECF/FASTSIM/Polach run is described by a configuration JSON (the format of
@@ -23,7 +23,6 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 ECF = Path(os.environ.get("ECF_BIN", ROOT / "target" / "release" / "ecf"))
-FIELDS = Path(os.environ.get("ECF_GALLERY_FIELDS_BIN", ROOT / "target" / "release" / "ecf-gallery-fields"))
 SCRATCH = Path(os.environ.get("ECF_GALLERY_SCRATCH", ROOT / "out" / "gallery-scratch"))
 
 # Operating point of the seed's Tab. 4.1/4.2 (Vectron wheel).
@@ -116,10 +115,9 @@ def field(cfg: dict, cx: float, v: float = 20.0, fn_kN: float = 110.0) -> dict[s
 
 def step_fields(cfg: dict, cx_from: float, cx_to: float, at_ms, v: float = 5.0, fn_kN: float = 110.0,
                 dt_ms: float = 0.01) -> dict[float, dict[str, np.ndarray]]:
-    """Fields along y = 0 at the instants `at_ms` after a creepage step (gallery/fields helper)."""
-    text = _run([FIELDS, "--config", str(_config_file(cfg)), "--v-mps", repr(float(v)),
-                 "--fn-kN", repr(float(fn_kN)), "--cx-from", repr(cx_from), "--cx-to", repr(cx_to),
-                 "--dt-ms", repr(dt_ms), "--at-ms", ",".join(repr(float(t)) for t in at_ms)])
+    """Fields along y = 0 at the instants `at_ms` after a creepage step: `ecf step --field-at-ms`."""
+    text = _run([ECF, "step", *_common(cfg, v, fn_kN), "--cx-from", repr(cx_from), "--cx-to", repr(cx_to),
+                 "--dt-ms", repr(dt_ms), "--field-at-ms", ",".join(repr(float(t)) for t in at_ms)])
     d = read_csv(text)
     out = {}
     for t in at_ms:

@@ -6,14 +6,12 @@
 #                                           drive-train runs): every figure and every assertion (CI)
 #   bash scripts/gallery.sh [--quick] [--no-plots] [OUTDIR]
 #
-# Builds what it needs first: the `ecf` CLI (release), the gallery's field helper
-# (gallery/fields, its own small workspace on top of creep-core), the contact FMU
+# Builds what it needs first: the `ecf` CLI (release), the contact FMU
 # (scripts/build-fmu.sh) and the Python venv (scripts/setup-venv.sh). Exit code 1 when a seed
 # statement has an unexpected outcome (see the summary printed at the end).
 # Environment: GALLERY_JOBS (figures computed in parallel, default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-ROOT=$PWD
 
 args=()
 out=""
@@ -33,8 +31,6 @@ fi
 
 echo "== gallery: build ecf CLI" >&2
 cargo build --release -q -p ecf-cli >&2
-echo "== gallery: build the field helper (gallery/fields)" >&2
-(cd gallery/fields && CARGO_TARGET_DIR="$ROOT/target" cargo build --release -q --locked >&2)
 echo "== gallery: contact FMU for the drive-train demo" >&2
 bash scripts/build-fmu.sh >/dev/null
 bash scripts/setup-venv.sh

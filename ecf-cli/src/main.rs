@@ -1,7 +1,7 @@
 //! `ecf`: command-line front of creep-core — creep curves, transient steps, periodic creepage and contact fields as CSV.
 
 use clap::{Args, Parser, Subcommand};
-use creep_core::{Config, CreepError, Geometry, Grid, Inputs, Model, Outputs};
+use creep_core::{Config, CreepError, FieldPoint, Geometry, Grid, Inputs, Model, Outputs};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -43,6 +43,13 @@ enum Cmd {
         /// Time step, ms
         #[arg(long, default_value_t = 0.01)]
         dt_ms: f64,
+        /// Instead of the time series: the fields along y = 0 at these instants after the
+        /// step (ms, comma separated, e.g. 0,0.1,0.8; each rounded to a whole time step; the
+        /// run ends at the last one, --duration-ms is not used). CSV
+        /// t_ms,f,x_mm,x_rail_mm,tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime, where
+        /// x_rail = x + v t is the position in a frame fixed on the rail (seed Fig. 4.13-4.19)
+        #[arg(long, value_name = "T1,T2,...")]
+        field_at_ms: Option<String>,
     },
     /// Periodic creepage cx = cm + ca sin(2 pi f t) (seed Sec. 4.5.2, Eq. 4.37): CSV t_s,cx,f,...
     Sine {
@@ -268,6 +275,47 @@ struct ModelArgs {
     extra: Vec<String>,
 }
 
+/// The fields along y = 0 of a bristle model (an error for Polach).
+fn field_of(model: &Model) -> Result<Vec<FieldPoint>, CreepError> {
+    model.field_y0().ok_or_else(|| CreepError::Config {
+        source_name: "--model".into(),
+        message: "fields exist for the bristle models (ecf, fastsim), not for polach".into(),
+    })
+}
+
+/// A strength in the CSV: -1 stands for "no limit" (infinite).
+fn finite_or_minus_one(x: f64) -> f64 {
+    if x.is_finite() {
+        x
+    } else {
+        -1.0
+    }
+}
+
+/// The instants of `--field-at-ms`: a comma-separated list of finite times >= 0 ms.
+fn parse_instants(s: &str) -> Result<Vec<f64>, CreepError> {
+    let at = s
+        .split(',')
+        .map(|x| {
+            x.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|t| t.is_finite() && *t >= 0.0 && *t <= 1e6)
+                .ok_or_else(|| CreepError::Config {
+                    source_name: "--field-at-ms".into(),
+                    message: format!("'{}': expected a time in ms within [0, 1e6]", x.trim()),
+                })
+        })
+        .collect::<Result<Vec<f64>, CreepError>>()?;
+    if at.is_empty() {
+        return Err(CreepError::Config {
+            source_name: "--field-at-ms".into(),
+            message: "give one or more instants in ms".into(),
+        });
+    }
+    Ok(at)
+}
+
 fn bad(field: &str, value: f64, expected: &str) -> CreepError {
     CreepError::OutOfRange {
         field: field.into(),
@@ -491,8 +539,69 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             m,
             cx_from,
             cx_to,
+            duration_ms: _,
+            dt_ms,
+            field_at_ms: Some(at),
+        } => {
+            let cfg = m.config()?;
+            let at = parse_instants(&at)?;
+            if !(dt_ms.is_finite() && dt_ms > 0.0) {
+                return Err(bad("--dt-ms", dt_ms, "must be finite and > 0 ms"));
+            }
+            let mut model = m.model(&cfg)?;
+            let mut o = model
+                .steady(&m.inputs(cx_from))
+                .map_err(|e| rename(e, "--cx-from"))?;
+            let inp = m.inputs(cx_to);
+            inp.validate().map_err(|e| rename(e, "--cx-to"))?;
+            // each instant at the whole time step nearest to it
+            let mut want: Vec<(usize, f64)> = at
+                .iter()
+                .map(|&t| ((t / dt_ms).round() as usize, t))
+                .collect();
+            want.sort_by_key(|p| p.0);
+            let last = want.last().map_or(0, |w| w.0);
+            let dt = dt_ms * 1e-3;
+            writeln!(
+                w,
+                "t_ms,f,x_mm,x_rail_mm,tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime"
+            )
+            .map_err(io)?;
+            for k in 0..=last {
+                if k > 0 {
+                    o = model.step(dt, &inp)?;
+                }
+                for &(_, t_req) in want.iter().filter(|p| p.0 == k) {
+                    let t = k as f64 * dt;
+                    for p in field_of(&model)? {
+                        writeln!(
+                            w,
+                            "{},{:.8},{:.5},{:.5},{:.1},{:.1},{:.1},{:.1},{:.1},{:.3},{}",
+                            t_req,
+                            o.f,
+                            p.x * 1e3,
+                            (p.x + m.v_mps * t) * 1e3,
+                            p.tau,
+                            p.tau_x,
+                            finite_or_minus_one(p.tau_c1),
+                            finite_or_minus_one(p.tau_c2),
+                            p.p,
+                            p.t,
+                            p.regime
+                        )
+                        .map_err(io)?;
+                    }
+                }
+            }
+            warn(&mut model);
+        }
+        Cmd::Step {
+            m,
+            cx_from,
+            cx_to,
             duration_ms,
             dt_ms,
+            field_at_ms: None,
         } => {
             let cfg = m.config()?;
             if !(duration_ms.is_finite() && duration_ms > 0.0 && duration_ms <= 1e6) {
@@ -563,27 +672,21 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             let cfg = m.config()?;
             let mut model = m.model(&cfg)?;
             model.steady(&m.inputs(cx)).map_err(|e| rename(e, "--cx"))?;
-            let f = model.field_y0().ok_or_else(|| CreepError::Config {
-                source_name: "--model".into(),
-                message: "fields exist for the bristle models (ecf, fastsim), not for polach"
-                    .into(),
-            })?;
+            let f = field_of(&model)?;
             writeln!(
                 w,
                 "x_mm,tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime"
             )
             .map_err(io)?;
             for p in f {
-                let c1 = if p.tau_c1.is_finite() { p.tau_c1 } else { -1.0 };
-                let c2 = if p.tau_c2.is_finite() { p.tau_c2 } else { -1.0 };
                 writeln!(
                     w,
                     "{:.5},{:.1},{:.1},{:.1},{:.1},{:.1},{:.3},{}",
                     p.x * 1e3,
                     p.tau,
                     p.tau_x,
-                    c1,
-                    c2,
+                    finite_or_minus_one(p.tau_c1),
+                    finite_or_minus_one(p.tau_c2),
                     p.p,
                     p.t,
                     p.regime

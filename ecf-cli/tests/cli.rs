@@ -327,3 +327,126 @@ fn hpt_files_are_compared_and_fitted() {
     assert_ne!(code, 0);
     assert!(err.contains("line 2") && err.contains("u_mm"), "{err}");
 }
+
+/// Columns of a CSV text by header name.
+fn columns(csv: &str) -> std::collections::HashMap<String, Vec<String>> {
+    let mut lines = csv.lines();
+    let head: Vec<String> = lines
+        .next()
+        .unwrap_or("")
+        .split(',')
+        .map(String::from)
+        .collect();
+    let mut cols: std::collections::HashMap<String, Vec<String>> =
+        head.iter().map(|h| (h.clone(), vec![])).collect();
+    for l in lines {
+        for (h, x) in head.iter().zip(l.split(',')) {
+            cols.get_mut(h).unwrap().push(x.to_string());
+        }
+    }
+    cols
+}
+
+#[test]
+fn step_field_at_ms_starts_at_the_steady_field_and_ends_at_the_new_one() {
+    // 5 m/s, 2a = 15.3 mm: the contact is renewed after 3.05 ms; at 8 ms it is the steady
+    // field of the new creepage
+    let common = [
+        "--preset", "dry", "--v-mps", "5", "--a-mm", "7.63", "--b-mm", "7.88", "--grid", "40x11",
+    ];
+    let steady = |cx: &str| {
+        let mut a = vec!["field"];
+        a.extend(common);
+        a.extend(["--cx", cx]);
+        let (code, out, err) = ecf(&a);
+        assert_eq!(code, 0, "{err}");
+        columns(&out)
+    };
+    let mut a = vec!["step"];
+    a.extend(common);
+    a.extend([
+        "--cx-from",
+        "0.002",
+        "--cx-to",
+        "0.02",
+        "--dt-ms",
+        "0.05",
+        "--field-at-ms",
+        "8,0,1.5",
+    ]);
+    let (code, out, err) = ecf(&a);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.starts_with(
+            "t_ms,f,x_mm,x_rail_mm,tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime\n"
+        ),
+        "{out}"
+    );
+    let c = columns(&out);
+    let at = |t: &str, col: &str| -> Vec<f64> {
+        c["t_ms"]
+            .iter()
+            .zip(&c[col])
+            .filter(|(tt, _)| tt.parse::<f64>().unwrap() == t.parse::<f64>().unwrap())
+            .map(|(_, x)| x.parse().unwrap())
+            .collect()
+    };
+    let num = |v: &[String]| -> Vec<f64> { v.iter().map(|x| x.parse().unwrap()).collect() };
+    // t = 0: exactly the steady field of cx_from
+    let s0 = steady("0.002");
+    assert_eq!(at("0", "tau_Pa"), num(&s0["tau_Pa"]));
+    assert_eq!(at("0", "x_mm"), num(&s0["x_mm"]));
+    // mid-transient: neither field; x_rail = x + v t
+    let s1 = steady("0.02");
+    let mid = at("1.5", "tau_Pa");
+    assert_ne!(mid, num(&s0["tau_Pa"]));
+    let (x, xr) = (at("1.5", "x_mm"), at("1.5", "x_rail_mm"));
+    for (x, xr) in x.iter().zip(&xr) {
+        assert!((xr - x - 7.5).abs() < 2e-5, "x_rail {xr} != x {x} + 7.5 mm");
+    }
+    // t = 8 ms: the steady field of cx_to (the transient converges to it)
+    // (its bristles sit between the lattice nodes now: the steady field is interpolated,
+    // away from the edges: at the leading one tau follows tau_c1 ~ the steep rise of the
+    // pressure, and the trailing node stands for the whole last cell)
+    let (end, x_end) = (at("8", "tau_Pa"), at("8", "x_mm"));
+    let (want, xs) = (num(&s1["tau_Pa"]), num(&s1["x_mm"]));
+    let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(end.len() >= want.len() - 1);
+    let f_end = at("8", "f")[0];
+    let (code, curve, err) = {
+        let mut a = vec!["curve"];
+        a.extend(common);
+        a.extend(["--cx", "0.02"]);
+        ecf(&a)
+    };
+    assert_eq!(code, 0, "{err}");
+    let f_steady: f64 = num(&columns(&curve)["f"])[0];
+    assert!(
+        (f_end / f_steady - 1.0).abs() < 2e-3,
+        "f(8 ms) {f_end} vs steady {f_steady}"
+    );
+    for (e, x) in end
+        .iter()
+        .zip(&x_end)
+        .filter(|(_, x)| **x < xs[2] && **x > xs[xs.len() - 2])
+    {
+        // x_mm runs from the leading edge (+a) down
+        let k = xs
+            .iter()
+            .position(|xx| xx <= x)
+            .unwrap_or(xs.len() - 1)
+            .max(1);
+        let w = want[k - 1] + (x - xs[k - 1]) / (xs[k] - xs[k - 1]) * (want[k] - want[k - 1]);
+        assert!(
+            (e - w).abs() <= 0.02 * scale,
+            "tau {e} vs steady {w} at x = {x} mm"
+        );
+    }
+    // a bad instant names the flag
+    let mut a = vec!["step"];
+    a.extend(common);
+    a.extend(["--cx-from", "0", "--cx-to", "0.01", "--field-at-ms", "1,-2"]);
+    let (code, _, err) = ecf(&a);
+    assert_ne!(code, 0);
+    assert!(err.contains("--field-at-ms") && err.contains("-2"), "{err}");
+}
