@@ -175,7 +175,7 @@ impl DataArgs {
     /// The configuration and the measurement file, read once.
     fn load(&self) -> Result<(Config, Data), CreepError> {
         let cfg = self.config_only()?;
-        let mut defaults = creep_core::measure::Defaults::default();
+        let mut defaults = ecf_measure::measure::Defaults::default();
         if let Some(v) = self.v_mps {
             defaults.v_mps = Some(creep_core::error::check_range(
                 "--v-mps", v, 0.0, 200.0, "m/s",
@@ -187,7 +187,7 @@ impl DataArgs {
             )?);
         }
         if let Some(u) = &self.cx_unit {
-            defaults.cx_unit = Some(creep_core::measure::CreepageUnit::parse(u)?);
+            defaults.cx_unit = Some(ecf_measure::measure::CreepageUnit::parse(u)?);
         }
         Ok((
             cfg,
@@ -196,7 +196,7 @@ impl DataArgs {
     }
 
     /// Like `load`, for commands that need creep measurements (not HPT curves).
-    fn load_rows(&self) -> Result<(Config, creep_core::measure::Dataset), CreepError> {
+    fn load_rows(&self) -> Result<(Config, ecf_measure::measure::Dataset), CreepError> {
         match self.load()? {
             (cfg, Data::Rows(d)) => Ok((cfg, d)),
             (_, Data::Hpt(_)) => Err(CreepError::Data {

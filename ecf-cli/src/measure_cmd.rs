@@ -1,10 +1,10 @@
 //! `ecf compare` and `ecf fit`: the measurement loop's comparison and fitting commands.
 
 use crate::plots::{xy_plot, Set, Style};
-use creep_core::evaluate::{compare as cmp, predict, regimes, Prediction};
-use creep_core::fit::{default_free, fit_params as run_fit, FreeParam};
-use creep_core::measure::Dataset;
 use creep_core::{params, Config, CreepError, Inputs, Model};
+use ecf_measure::evaluate::{compare as cmp, predict, regimes, Prediction};
+use ecf_measure::fit::{default_free, fit_params as run_fit, FreeParam};
+use ecf_measure::measure::Dataset;
 use std::io::Write;
 use std::path::Path;
 
@@ -340,7 +340,7 @@ pub fn diagnose(
     );
     bar.enable_steady_tick(std::time::Duration::from_millis(200));
     let progress = |stage: &str| bar.set_message(format!("refitting with {stage}"));
-    let d = creep_core::diagnose::diagnose(cfg, data, threads, &progress)?;
+    let d = ecf_measure::diagnose::diagnose(cfg, data, threads, &progress)?;
     bar.finish_and_clear();
     if json {
         write_json(w, &d)?;
@@ -475,7 +475,7 @@ pub fn report(
         None => None,
     };
     drop(guard);
-    let d = creep_core::diagnose::diagnose(cfg, data, threads, &|_| {})?;
+    let d = ecf_measure::diagnose::diagnose(cfg, data, threads, &|_| {})?;
     let mut diag = format!(
         "<h2>Diagnosis of the first configuration</h2><p><b>{}</b></p>",
         esc(&d.verdict)
@@ -532,17 +532,17 @@ pub enum Data {
     /// Steady characteristics and time series (`cx`, `f`, ...).
     Rows(Dataset),
     /// High-pressure-torsion curves (`p_MPa`, `u_mm`, `tau_MPa`).
-    Hpt(Vec<creep_core::measure::HptRow>),
+    Hpt(Vec<ecf_measure::measure::HptRow>),
 }
 
 /// Reads a measurement file once; a header with `p_MPa`, `u_mm` and `tau_MPa` makes it a
 /// high-pressure-torsion file. The column mapping is printed on stderr.
 pub fn read_data(
     path: &Path,
-    defaults: &creep_core::measure::Defaults,
+    defaults: &ecf_measure::measure::Defaults,
     quiet: bool,
 ) -> Result<Data, CreepError> {
-    use creep_core::measure::{detect_delimiter, utf8_text};
+    use ecf_measure::measure::{detect_delimiter, utf8_text};
     let src = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| CreepError::Data {
         source_name: src.clone(),
@@ -560,7 +560,7 @@ pub fn read_data(
                 .all(|c| cols.contains(c))
         });
     Ok(if hpt {
-        Data::Hpt(creep_core::measure::read_hpt(&text, &src)?)
+        Data::Hpt(ecf_measure::measure::read_hpt(&text, &src)?)
     } else {
         let d = Dataset::from_csv_str(&text, &src, defaults)?;
         if !quiet {
@@ -580,12 +580,12 @@ fn write_json<T: serde::Serialize>(w: &mut Vec<u8>, v: &T) -> Result<(), CreepEr
 pub fn compare_hpt(
     cfg: &Config,
     path: &Path,
-    rows: &[creep_core::measure::HptRow],
+    rows: &[ecf_measure::measure::HptRow],
     json: bool,
     plots: Option<&Path>,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let model = creep_core::hpt::predict(cfg, rows);
+    let model = ecf_measure::hpt::predict(cfg, rows);
     let mut series: Vec<String> = Vec::new();
     for r in rows {
         if !series.contains(&r.series) {
@@ -600,14 +600,14 @@ pub fn compare_hpt(
             let idx = idx_of(s);
             (
                 s.clone(),
-                creep_core::measure::cv_rmse_pct(
+                ecf_measure::measure::cv_rmse_pct(
                     &idx.iter().map(|&i| rows[i].tau).collect::<Vec<_>>(),
                     &idx.iter().map(|&i| model[i]).collect::<Vec<_>>(),
                 ),
             )
         })
         .collect();
-    let overall = creep_core::hpt::cv_rmse(cfg, rows);
+    let overall = ecf_measure::hpt::cv_rmse(cfg, rows);
     if let Some(dir) = plots {
         std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
             source_name: dir.display().to_string(),
@@ -674,7 +674,7 @@ pub fn compare_hpt(
 pub fn fit_hpt(
     cfg: &Config,
     path: &Path,
-    rows: &[creep_core::measure::HptRow],
+    rows: &[ecf_measure::measure::HptRow],
     free: Option<&str>,
     bounds: &[String],
     out: &Path,
@@ -687,18 +687,18 @@ pub fn fit_hpt(
             .split(',')
             .map(|n| FreeParam::resolve(cfg, n.trim()))
             .collect::<Result<_, _>>()?,
-        None => creep_core::hpt::default_free()
+        None => ecf_measure::hpt::default_free()
             .into_iter()
             .map(FreeParam::Builtin)
             .collect(),
     };
-    let r = creep_core::hpt::fit(cfg, &path.display().to_string(), rows, &free, &|_| {})?;
+    let r = ecf_measure::hpt::fit(cfg, &path.display().to_string(), rows, &free, &|_| {})?;
     report_fit(&r, out, json, w)
 }
 
 /// Writes the fitted configuration atomically (temporary file, then rename) and reports the fit.
 fn report_fit(
-    r: &creep_core::fit::FitResult,
+    r: &ecf_measure::fit::FitResult,
     out: &Path,
     json: bool,
     w: &mut Vec<u8>,
@@ -762,8 +762,8 @@ fn report_fit(
             .map(|p| params::spec(p).unit)
             .unwrap_or("-");
         let unc = match st {
-            creep_core::fit::ParamStatus::Determined => format!("± {se:.2e}"),
-            creep_core::fit::ParamStatus::NotIdentifiable => "± inf".to_string(),
+            ecf_measure::fit::ParamStatus::Determined => format!("± {se:.2e}"),
+            ecf_measure::fit::ParamStatus::NotIdentifiable => "± inf".to_string(),
             _ => "± -".to_string(),
         };
         let note = if st.note().is_empty() {
@@ -774,7 +774,7 @@ fn report_fit(
         writeln!(w, "  {n:<22} {s:>12.6} -> {v:>12.6} {unc} {unit}{note}").map_err(io)?;
     }
     let det: Vec<usize> = (0..r.params.len())
-        .filter(|&k| r.status[k] == creep_core::fit::ParamStatus::Determined)
+        .filter(|&k| r.status[k] == ecf_measure::fit::ParamStatus::Determined)
         .collect();
     for (a, &i) in det.iter().enumerate() {
         for &j in &det[a + 1..] {

@@ -1,7 +1,7 @@
 //! An effect written in Rust (custom catalogue) acts like the equivalent formula effect and is fitted like any parameter.
 mod common;
-use creep_core::fit::{fit_params, FreeParam};
 use creep_core::{Config, Inputs, Model};
+use ecf_measure::fit::{fit_params, FreeParam};
 
 const FORMULA: &str = r#"{"preset": "dry", "grid": {"nx": 20, "ny": 7},
     "formula_effects": [{"name": "humid", "target": "tau_c2", "factor": "1 - k * (humidity - 50) / 50",
@@ -92,7 +92,7 @@ fn custom_effect_parameter_is_fitted() {
         }
     }
     let data =
-        creep_core::measure::Dataset::from_csv_str(&csv, "h.csv", &Default::default()).unwrap();
+        ecf_measure::measure::Dataset::from_csv_str(&csv, "h.csv", &Default::default()).unwrap();
     let start =
         Config::from_json_str(&CUSTOM.replace("\"k\": 0.3", "\"k\": 0.0"), "start").unwrap();
     let free = [FreeParam::resolve(&start, "humidity_softening.k").unwrap()];

@@ -1,12 +1,12 @@
 //! The shortcuts of `diagnose` change nothing: memoised predictions and fits are bit-identical to the plain ones, and the diagnosis does not depend on the number of threads.
 mod common;
 use common::*;
-use creep_core::diagnose::{diagnose, diagnose_with};
-use creep_core::evaluate::{predict, predict_with, Memo};
-use creep_core::fit::{default_free, fit_params, fit_params_with, FitOptions, FreeParam};
 use creep_core::formula::{FormulaEffect, Target};
-use creep_core::measure::{Dataset, Defaults};
 use creep_core::Config;
+use ecf_measure::diagnose::{diagnose, diagnose_with};
+use ecf_measure::evaluate::{predict, predict_with, Memo};
+use ecf_measure::fit::{default_free, fit_params, fit_params_with, FitOptions, FreeParam};
+use ecf_measure::measure::{Dataset, Defaults};
 
 fn humid() -> Dataset {
     let path =
@@ -91,7 +91,7 @@ fn memoised_fit_without_uncertainties_gives_the_same_fit() {
     };
     let fast = fit_params_with(&cfg, &data, &free, 1, &opts, &|_| {}).unwrap();
     let values =
-        |r: &creep_core::fit::FitResult| -> Vec<f64> { r.params.iter().map(|p| p.2).collect() };
+        |r: &ecf_measure::fit::FitResult| -> Vec<f64> { r.params.iter().map(|p| p.2).collect() };
     assert_eq!(bits(&values(&plain)), bits(&values(&fast)));
     assert_eq!(
         plain.cv_rmse_pct_after.to_bits(),

@@ -6,13 +6,13 @@
 //! u_y)/L_p)) (Eq. 4.2 with Delta u = tau_c1 L_e as printed). Fitting these curves gives the
 //! pressure coefficients and the maximum values of the material laws (seed Sec. 5.1).
 
-use crate::bristle::voce;
-use crate::config::Config;
-use crate::engine::layer_material;
-use crate::error::Result;
 use crate::fit::{fit_generic, FitResult, FreeParam};
 use crate::measure::{cv_rmse_pct, HptRow};
-use crate::params::P;
+use creep_core::bristle::voce;
+use creep_core::config::Config;
+use creep_core::engine::layer_material;
+use creep_core::error::Result;
+use creep_core::params::P;
 
 /// Model shear stress (Pa) of each HPT row.
 pub fn predict(cfg: &Config, rows: &[HptRow]) -> Vec<f64> {

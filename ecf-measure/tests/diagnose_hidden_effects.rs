@@ -1,10 +1,10 @@
 //! The measurement loop on files with a known hidden effect: diagnose names it, adding it brings the error to the noise level; with no hidden effect nothing is claimed.
 mod common;
 use common::*;
-use creep_core::diagnose::diagnose;
-use creep_core::fit::{default_free, fit};
-use creep_core::measure::{Dataset, Defaults};
 use creep_core::{Config, Effect, Geometry, Inputs, Model};
+use ecf_measure::diagnose::diagnose;
+use ecf_measure::fit::{default_free, fit};
+use ecf_measure::measure::{Dataset, Defaults};
 
 fn noise(seed: &mut u64, sd: f64) -> f64 {
     let mut s = 0.0;
@@ -219,8 +219,8 @@ fn hidden_transient_response_is_found_in_time_series() {
     // with it (no parameter to fit) the error is at the noise level
     let mut fixed = cfg.clone();
     fixed.effects.insert(Effect::Transient);
-    let p = creep_core::evaluate::predict(&fixed, &data, 2).unwrap();
-    let cmp = creep_core::evaluate::compare(&data, &p);
+    let p = ecf_measure::evaluate::predict(&fixed, &data, 2).unwrap();
+    let cmp = ecf_measure::evaluate::compare(&data, &p);
     assert!(
         cmp.cv_rmse_pct < 1.5 * noise_cv(&data, sd),
         "{} % vs noise {} %",
@@ -296,8 +296,8 @@ fn hidden_effect_of_an_extra_column_is_found_by_residuals_and_a_formula_fixes_it
         "user",
     )
     .unwrap();
-    let free = vec![creep_core::fit::FreeParam::resolve(&user, "humid.k").unwrap()];
-    let r = creep_core::fit::fit_params(&user, &data, &free, 2, &|_| {}).unwrap();
+    let free = vec![ecf_measure::fit::FreeParam::resolve(&user, "humid.k").unwrap()];
+    let r = ecf_measure::fit::fit_params(&user, &data, &free, 2, &|_| {}).unwrap();
     assert!(
         r.cv_rmse_pct_after < 1.5 * noise_cv(&data, sd),
         "after {} %",

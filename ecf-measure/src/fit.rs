@@ -6,12 +6,12 @@
 //! finite interval. The Jacobian is a forward difference in z. Standard errors come from the
 //! covariance s^2 (J^T J)^-1 in parameter units at the optimum, s^2 = RSS/(n - k).
 
-use crate::config::{Config, ModelKind};
-use crate::effects::Effect;
-use crate::error::{CreepError, Result};
 use crate::evaluate::{predict_with, Memo};
 use crate::measure::{cv_rmse_pct, Dataset};
-use crate::params::{spec, P};
+use creep_core::config::{Config, ModelKind};
+use creep_core::effects::Effect;
+use creep_core::error::{CreepError, Result};
+use creep_core::params::{spec, P};
 
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
@@ -113,10 +113,10 @@ impl FreeParam {
         }
         Ok(())
     }
-    /// Plausible physical range (registry parameters; see [`crate::params::plausible`]).
+    /// Plausible physical range (registry parameters; see [`creep_core::params::plausible`]).
     pub fn plausible(&self) -> Option<(f64, f64)> {
         match *self {
-            FreeParam::Builtin(p) => Some(crate::params::plausible(p)),
+            FreeParam::Builtin(p) => Some(creep_core::params::plausible(p)),
             _ => None,
         }
     }
@@ -143,7 +143,7 @@ impl FreeParam {
     /// Resolves a name: a registry parameter, `EFFECT.PARAM`, or a formula parameter name
     /// that is unique among the formula effects.
     pub fn resolve(cfg: &Config, name: &str) -> Result<FreeParam> {
-        if let Some(p) = crate::params::by_name(name) {
+        if let Some(p) = creep_core::params::by_name(name) {
             return Ok(FreeParam::Builtin(p));
         }
         let mut found = Vec::new();
@@ -173,7 +173,7 @@ impl FreeParam {
                 Err(CreepError::Unknown {
                     kind: "parameter".into(),
                     name: name.into(),
-                    accepted: crate::params::SPECS
+                    accepted: creep_core::params::SPECS
                         .iter()
                         .map(|s| s.name.to_string())
                         .chain(cfg.formulas.iter().flat_map(|f| {

@@ -1,10 +1,10 @@
 //! Fitting (Eq. 5.1) recovers hidden parameters from synthetic measurements to the noise level, with honest standard errors.
 mod common;
 use common::*;
-use creep_core::evaluate::{compare, predict};
-use creep_core::fit::fit;
-use creep_core::measure::{Dataset, Defaults};
 use creep_core::params::P;
+use ecf_measure::evaluate::{compare, predict};
+use ecf_measure::fit::fit;
+use ecf_measure::measure::{Dataset, Defaults};
 
 /// Deterministic Gaussian-ish noise (sum of 4 uniforms from an LCG), standard deviation `sd`.
 fn noise(seed: &mut u64, sd: f64) -> f64 {

@@ -1,9 +1,9 @@
 //! High-pressure-torsion curves of the layer alone (seed Sec. 5.1): shape of Eq. 4.1/4.2 and recovery of the parameters by fitting.
 mod common;
 use common::*;
-use creep_core::fit::FreeParam;
-use creep_core::hpt;
-use creep_core::measure::read_hpt;
+use ecf_measure::fit::FreeParam;
+use ecf_measure::hpt;
+use ecf_measure::measure::read_hpt;
 
 fn curves(cfg: &creep_core::Config) -> String {
     let mut csv = String::from("p_MPa,u_mm,tau_MPa,series\n");

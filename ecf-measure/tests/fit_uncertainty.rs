@@ -3,9 +3,9 @@
 //! failures (issue 12, "Fitting").
 mod common;
 use common::{preset, with_grid};
-use creep_core::fit::{fit_params, FreeParam, ParamStatus};
-use creep_core::measure::{Dataset, Defaults};
 use creep_core::{Config, Inputs, Model};
+use ecf_measure::fit::{fit_params, FreeParam, ParamStatus};
+use ecf_measure::measure::{Dataset, Defaults};
 
 /// Steady curves of `truth` at 5 and 20 m/s, 12 creepages each, plus deterministic noise of
 /// amplitude `sd`.

@@ -1,7 +1,7 @@
 //! Reading measurement files: units and spellings in headers, delimiters, creepage units,
 //! missing quantities and the messages of bad files (issue 12, "Reading files").
-use creep_core::measure::{CreepageUnit, Dataset, Defaults};
 use creep_core::Config;
+use ecf_measure::measure::{CreepageUnit, Dataset, Defaults};
 
 fn read(text: &str) -> Result<Dataset, String> {
     Dataset::from_csv_str(text, "m.csv", &Defaults::default()).map_err(|e| e.to_string())
@@ -118,7 +118,7 @@ fn creepage_in_percent_needs_a_unit_and_percent_looking_values_stop() {
 #[test]
 fn messages_name_the_data_file_line_and_cut_long_cells() {
     let bytes = b"cx,f,v_mps,fn_kN\n0.01,0.3,5,110\n0.02,0.3\xe9,5,110\n";
-    let e = creep_core::measure::utf8_text(bytes, "m.csv")
+    let e = ecf_measure::measure::utf8_text(bytes, "m.csv")
         .unwrap_err()
         .to_string();
     assert!(
@@ -161,7 +161,7 @@ fn configuration_errors_name_the_file_and_mixed_effect_lists_are_refused() {
     )
     .unwrap();
     let d = read("cx,f,v_mps,fn_kN\n0.01,0.3,5,110\n").unwrap();
-    let e = creep_core::evaluate::predict(&cfg, &d, 1)
+    let e = ecf_measure::evaluate::predict(&cfg, &d, 1)
         .unwrap_err()
         .to_string();
     assert!(

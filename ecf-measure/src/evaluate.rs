@@ -1,9 +1,9 @@
 //! Runs a configuration over a measurement file and compares: per-row predictions, CV(RMSE) overall, per group and per creepage regime.
 
-use crate::config::{Config, Geometry};
-use crate::error::{CreepError, Result};
 use crate::measure::{Dataset, Row};
-use crate::model::Model;
+use creep_core::config::{Config, Geometry};
+use creep_core::error::{CreepError, Result};
+use creep_core::model::Model;
 use std::collections::BTreeMap;
 
 /// Model result at one measured point.
@@ -207,7 +207,7 @@ fn bad_factor(cfg: &Config, data: &Dataset, r: &Row) -> Option<(String, f64)> {
             .cloned()
             .zip(r.extra.iter().copied())
             .collect();
-        let op = crate::custom::OperatingPoint {
+        let op = creep_core::custom::OperatingPoint {
             v_mps: r.v,
             fn_kn: r.fn_n / 1e3,
             cx: r.cx,
@@ -222,7 +222,7 @@ fn bad_factor(cfg: &Config, data: &Dataset, r: &Row) -> Option<(String, f64)> {
                 &[0.0]
             };
             for &p in probes {
-                let local = crate::custom::LocalState {
+                let local = creep_core::custom::LocalState {
                     p_gpa: p,
                     t_c: r.t_bulk,
                     u_mm: 0.0,
@@ -466,7 +466,7 @@ pub fn predict_with(
             cfg.effects
                 .to_vec()
                 .iter()
-                .map(|e| crate::effects::info(*e).name)
+                .map(|e| creep_core::effects::info(*e).name)
                 .collect::<Vec<_>>()
         );
         for f in &cfg.formulas {

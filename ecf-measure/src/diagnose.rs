@@ -11,14 +11,14 @@
 //! 3. Candidates are ranked by held-out CV(RMSE). A missing effect is claimed only when the
 //!    best candidate lowers the held-out error by at least `CLAIM_FRACTION` of the baseline.
 
-use crate::config::{Config, ModelKind};
-use crate::effects::{self, Effect};
-use crate::error::Result;
 use crate::evaluate::{predict_with, Memo, Prediction};
 use crate::fit::{default_free, fit_params_with, FitOptions, FreeParam};
-use crate::formula::{FormulaEffect, Target};
 use crate::measure::{cv_rmse_pct, Dataset};
-use crate::params::P;
+use creep_core::config::{Config, ModelKind};
+use creep_core::effects::{self, Effect};
+use creep_core::error::Result;
+use creep_core::formula::{FormulaEffect, Target};
+use creep_core::params::P;
 
 /// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
 pub const CLAIM_FRACTION: f64 = 0.25;
@@ -377,7 +377,7 @@ pub fn diagnose_with(
     // registered Rust effects the configuration lacks, whose data columns the file has
     let mut untried: Vec<String> = Vec::new();
     if cfg.model != ModelKind::Polach {
-        for eff in crate::custom::CATALOGUE {
+        for eff in creep_core::custom::CATALOGUE {
             if cfg.custom.iter().any(|u| u.effect.name() == eff.name()) {
                 continue;
             }
@@ -392,7 +392,7 @@ pub fn diagnose_with(
             progress(eff.name());
             let mut c = cfg.clone();
             c.custom
-                .push(crate::custom::CustomUse::by_name(eff.name())?);
+                .push(creep_core::custom::CustomUse::by_name(eff.name())?);
             let mut free = base_free.clone();
             let e = c.custom.len() - 1;
             for (k, p) in eff.params().iter().enumerate() {

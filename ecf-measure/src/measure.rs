@@ -10,8 +10,8 @@
 //! variable. Rows of one series with `t_s` form a time series. A file is read completely or
 //! not at all: the first problem is reported with file, line, column and reason.
 
-use crate::engine::Inputs;
-use crate::error::{CreepError, Result};
+use creep_core::engine::Inputs;
+use creep_core::error::{CreepError, Result};
 use std::collections::BTreeMap;
 use std::path::Path;
 

@@ -1,0 +1,16 @@
+//! ecf-measure: the measurement loop on top of creep-core — read measurement files, compare a configuration with them, fit its parameters, diagnose which physical effect is missing.
+//!
+//! The loop of docs/measurements.md: [`measure`] reads files (CSV rows of creepage and
+//! measured traction, or high-pressure-torsion curves, [`hpt`]); [`evaluate`] predicts every
+//! row with creep-core's steady model and scores the difference (CV(RMSE), Eq. 2.9); [`fit`]
+//! fits free parameters by Levenberg-Marquardt with standard errors and correlations;
+//! [`diagnose`] tries the catalogue's effects and reports which lowers the held-out error.
+//! The physics crate creep-core and the FMU do not depend on this crate.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod diagnose;
+pub mod evaluate;
+pub mod fit;
+pub mod hpt;
+pub mod measure;
