@@ -1,4 +1,8 @@
-//! Effects written in Rust: implement [`CustomEffect`], add a static instance to [`CATALOGUE`], rebuild.
+//! Effects written in Rust: implement [`CustomEffect`] in your own crate and register it with [`crate::register_effect!`]; it joins the [`catalogue`] at link time.
+//!
+//! No fork of the project is needed: a crate that depends on creep-core registers its effects,
+//! and `scripts/build-fmu.sh --effects PATH/TO/CRATE` builds an `ecf` binary and an FMU that
+//! link it (worked example: `examples/user-effect/`, docs/measurements.md "Effects in Rust").
 //!
 //! A custom effect scales one material function (like a formula effect, module
 //! [`crate::formula`]) by a factor computed in Rust from its parameters, the bristle's local
@@ -109,9 +113,33 @@ impl CustomEffect for HumiditySoftening {
 }
 
 static HUMIDITY_SOFTENING: HumiditySoftening = HumiditySoftening;
+crate::register_effect!(HUMIDITY_SOFTENING);
 
-/// The registered Rust effects. Add yours here.
-pub static CATALOGUE: &[&dyn CustomEffect] = &[&HUMIDITY_SOFTENING];
+/// One registered Rust effect (made by [`crate::register_effect!`]; collected at link time).
+pub struct Registration(pub &'static dyn CustomEffect);
+
+inventory::collect!(Registration);
+
+/// Registers a Rust effect with creep-core's catalogue at link time:
+/// `static MINE: Mine = Mine; creep_core::register_effect!(MINE);` in any crate linked into
+/// the program (the `ecf` binary or the FMU built by `scripts/build-fmu.sh --effects`).
+#[macro_export]
+macro_rules! register_effect {
+    ($effect:path) => {
+        $crate::inventory::submit! { $crate::custom::Registration(&$effect) }
+    };
+}
+
+/// The registered Rust effects, sorted by name: the built-in example and every effect of
+/// the crates linked into this program.
+pub fn catalogue() -> Vec<&'static dyn CustomEffect> {
+    let mut v: Vec<&'static dyn CustomEffect> = inventory::iter::<Registration>
+        .into_iter()
+        .map(|r| r.0)
+        .collect();
+    v.sort_by_key(|e| e.name());
+    v
+}
 
 /// A custom effect switched on in a configuration, with its parameter values.
 #[derive(Clone, Debug)]
@@ -133,18 +161,24 @@ impl PartialEq for CustomUse {
 impl CustomUse {
     /// Looks an effect up by name, with default parameters.
     pub fn by_name(name: &str) -> Result<Self> {
-        let e = CATALOGUE
-            .iter()
-            .find(|e| e.name() == name)
-            .ok_or_else(|| CreepError::Unknown {
-                kind: "custom effect".into(),
-                name: name.into(),
-                accepted: CATALOGUE
-                    .iter()
-                    .map(|e| e.name())
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            })?;
+        let all = catalogue();
+        let mut found = all.iter().filter(|e| e.name() == name);
+        let e = found.next().ok_or_else(|| CreepError::Unknown {
+            kind: "custom effect".into(),
+            name: name.into(),
+            accepted: format!(
+                "{} (effects of your own crate are linked with scripts/build-fmu.sh --effects PATH)",
+                all.iter().map(|e| e.name()).collect::<Vec<_>>().join(", ")
+            ),
+        })?;
+        if found.next().is_some() {
+            return Err(CreepError::Config {
+                source_name: "custom_effects".into(),
+                message: format!(
+                    "two linked crates register a Rust effect named '{name}'; rename one"
+                ),
+            });
+        }
         Ok(CustomUse {
             effect: *e,
             params: e.params().iter().map(|p| p.1).collect(),

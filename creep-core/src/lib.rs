@@ -33,6 +33,9 @@ pub mod polach;
 pub mod state;
 pub mod thermal;
 
+#[doc(hidden)]
+pub use inventory;
+
 pub use config::{Bound, Config, Geometry, Grid, ModelKind};
 pub use effects::Effect;
 pub use engine::{Contact, FieldPoint, Inputs, Outputs};

@@ -377,7 +377,7 @@ pub fn diagnose_with(
     // registered Rust effects the configuration lacks, whose data columns the file has
     let mut untried: Vec<String> = Vec::new();
     if cfg.model != ModelKind::Polach {
-        for eff in creep_core::custom::CATALOGUE {
+        for eff in creep_core::custom::catalogue() {
             if cfg.custom.iter().any(|u| u.effect.name() == eff.name()) {
                 continue;
             }

@@ -1,0 +1,827 @@
+//! `ecf`: command-line front of creep-core and ecf-measure — creep curves, transient steps, periodic creepage and contact fields as CSV.
+
+use clap::{Args, Parser, Subcommand};
+use creep_core::{Config, CreepError, FieldPoint, Geometry, Grid, Inputs, Model, Outputs};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+const UNITS: &str = "Units: creepages cx, cy dimensionless (0.01 = 1 %), spin 1/m, speed m/s, \
+normal force kN, semi-axes mm, time s (t_s) or ms (--duration-ms), forces N (Fx_N, Fy_N), \
+moment N m (Mz_Nm), temperatures degC, power W, pressure/stress Pa.";
+
+#[derive(Parser)]
+#[command(name = "ecf", version, about = "Wheel-rail creep forces: ECF (third body layer + flash temperature), FASTSIM and Polach", after_help = UNITS)]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Steady creep curve f(cx): CSV cx,f,Fx_N,...
+    Curve {
+        #[command(flatten)]
+        m: ModelArgs,
+        /// Creepages: comma separated (0.001,0.01) or start:stop:n (0.001:0.5:50), dimensionless
+        #[arg(long, allow_hyphen_values = true)]
+        cx: String,
+    },
+    /// Transient response to a creepage step at t = 0 (seed Sec. 4.5.1): CSV t_s,cx,f,...
+    Step {
+        #[command(flatten)]
+        m: ModelArgs,
+        /// Creepage before the step (steady state at t <= 0), dimensionless
+        #[arg(long, allow_hyphen_values = true)]
+        cx_from: f64,
+        /// Creepage after the step, dimensionless
+        #[arg(long, allow_hyphen_values = true)]
+        cx_to: f64,
+        /// Simulated time after the step, ms
+        #[arg(long, default_value_t = 5.0)]
+        duration_ms: f64,
+        /// Time step, ms
+        #[arg(long, default_value_t = 0.01)]
+        dt_ms: f64,
+        /// Instead of the time series: the fields along y = 0 at these instants after the
+        /// step (ms, comma separated, e.g. 0,0.1,0.8; each rounded to a whole time step; the
+        /// run ends at the last one, --duration-ms is not used). CSV
+        /// t_ms,f,x_mm,x_rail_mm,tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime, where
+        /// x_rail = x + v t is the position in a frame fixed on the rail (seed Fig. 4.13-4.19)
+        #[arg(long, value_name = "T1,T2,...")]
+        field_at_ms: Option<String>,
+    },
+    /// Periodic creepage cx = cm + ca sin(2 pi f t) (seed Sec. 4.5.2, Eq. 4.37): CSV t_s,cx,f,...
+    Sine {
+        #[command(flatten)]
+        m: ModelArgs,
+        /// Mean creepage c_m, dimensionless
+        #[arg(long, allow_hyphen_values = true)]
+        cm: f64,
+        /// Amplitude c_A, dimensionless
+        #[arg(long)]
+        ca: f64,
+        /// Frequency f_0, Hz
+        #[arg(long)]
+        freq_hz: f64,
+        /// Number of periods
+        #[arg(long, default_value_t = 3)]
+        cycles: u32,
+        /// Time steps per period
+        #[arg(long, default_value_t = 200)]
+        steps_per_cycle: u32,
+    },
+    /// Fields along y = 0 at steady state (seed Fig. 4.9/4.10): CSV x_mm,tau_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime
+    Field {
+        #[command(flatten)]
+        m: ModelArgs,
+        /// Creepage, dimensionless
+        #[arg(long, allow_hyphen_values = true)]
+        cx: f64,
+    },
+    /// Lists presets, effects and parameters with units, defaults and bounds
+    Info,
+    /// Compares a configuration with a measurement file: CV(RMSE) (Eq. 2.9) overall, per group and regime; PNG plots
+    Compare {
+        #[command(flatten)]
+        d: DataArgs,
+        /// Print the comparison as JSON ({"cv_rmse_pct": x, "groups": [...], ...})
+        #[arg(long)]
+        json: bool,
+        /// Directory for PNG plots (measured vs model per series, residuals over every variable)
+        #[arg(long)]
+        plots: Option<PathBuf>,
+    },
+    /// Which physical effect is missing? Residual correlations, each catalogue effect added, refitted and scored on held-out groups
+    Diagnose {
+        #[command(flatten)]
+        d: DataArgs,
+        /// Print the diagnosis as JSON ({"baseline_cv_rmse_pct": x, "candidates": [...], "correlations": [...]})
+        #[arg(long)]
+        json: bool,
+    },
+    /// One self-contained HTML page: comparison, diagnosis and plots; with --compare-with, before and after side by side
+    Report {
+        #[command(flatten)]
+        d: DataArgs,
+        /// A second configuration (e.g. the fitted one) shown beside the first
+        #[arg(long)]
+        compare_with: Option<PathBuf>,
+        /// Output HTML file
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Fits parameters to a measurement file (Eq. 5.1, bounded Levenberg-Marquardt) and writes the fitted configuration
+    Fit {
+        #[command(flatten)]
+        d: DataArgs,
+        /// Parameters to fit, comma separated (names as in `ecf info`); default: the layer strengths and hardening scale (+ their temperature coefficients)
+        #[arg(long)]
+        free: Option<String>,
+        /// Narrow a parameter's bounds for this fit, NAME=MIN:MAX (repeatable), e.g. tau_c2_0_GPa=0.2:2
+        #[arg(
+            long = "bound",
+            value_name = "NAME=MIN:MAX",
+            allow_hyphen_values = true
+        )]
+        bounds: Vec<String>,
+        /// Where to write the fitted configuration JSON (left untouched when the fit fails)
+        #[arg(long)]
+        out: PathBuf,
+        /// Print the result as JSON
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// The number of cores this process may run on (its CPU affinity), at least 1.
+fn default_threads() -> usize {
+    std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
+}
+
+#[derive(Args, Clone)]
+struct DataArgs {
+    /// Measurement CSV (columns cx, f [, series, condition, v_mps, fn_kN, a_mm, b_mm, cy, cs_per_m, t_s, t_bulk_C, extra numeric columns])
+    data: PathBuf,
+    /// Configuration JSON file
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Preset (instead of --config)
+    #[arg(long)]
+    preset: Option<String>,
+    /// Bristle grid NXxNY (overrides the configuration's)
+    #[arg(long)]
+    grid: Option<String>,
+    /// Worker threads (default: the cores this process may run on; results do not depend on it)
+    #[arg(long, default_value_t = default_threads())]
+    threads: usize,
+    /// Speed of every row, m/s, for a data file without a speed column (no silent default)
+    #[arg(long)]
+    v_mps: Option<f64>,
+    /// Normal force of every row, kN, for a data file without a load column (no silent default)
+    #[arg(long = "fn-kN", visible_alias = "fn-kn")]
+    fn_kn: Option<f64>,
+    /// Unit of creepage columns whose header gives none: 1 (dimensionless, 0.01 = 1 %) or percent
+    #[arg(long)]
+    cx_unit: Option<String>,
+    /// Do not print the column mapping of the data file on stderr
+    #[arg(long)]
+    quiet: bool,
+}
+
+impl DataArgs {
+    /// The configuration and the measurement file, read once.
+    fn load(&self) -> Result<(Config, Data), CreepError> {
+        let cfg = self.config_only()?;
+        let mut defaults = ecf_measure::measure::Defaults::default();
+        if let Some(v) = self.v_mps {
+            defaults.v_mps = Some(creep_core::error::check_range(
+                "--v-mps", v, 0.0, 200.0, "m/s",
+            )?);
+        }
+        if let Some(f) = self.fn_kn {
+            defaults.fn_kn = Some(creep_core::error::check_range(
+                "--fn-kN", f, 1e-6, 5000.0, "kN",
+            )?);
+        }
+        if let Some(u) = &self.cx_unit {
+            defaults.cx_unit = Some(ecf_measure::measure::CreepageUnit::parse(u)?);
+        }
+        Ok((
+            cfg,
+            measure_cmd::read_data(&self.data, &defaults, self.quiet)?,
+        ))
+    }
+
+    /// Like `load`, for commands that need creep measurements (not HPT curves).
+    fn load_rows(&self) -> Result<(Config, ecf_measure::measure::Dataset), CreepError> {
+        match self.load()? {
+            (cfg, Data::Rows(d)) => Ok((cfg, d)),
+            (_, Data::Hpt(_)) => Err(CreepError::Data {
+                source_name: self.data.display().to_string(),
+                message: "a high-pressure-torsion file (p_MPa, u_mm, tau_MPa): use ecf compare or ecf fit".into(),
+            }),
+        }
+    }
+
+    fn config_only(&self) -> Result<Config, CreepError> {
+        let mut cfg = match (&self.config, &self.preset) {
+            (Some(p), None) => Config::from_file(p)?,
+            (None, Some(p)) => Config::preset(p)?,
+            _ => {
+                return Err(CreepError::Config {
+                    source_name: "--config/--preset".into(),
+                    message: "give exactly one of --config FILE or --preset NAME".into(),
+                })
+            }
+        };
+        if let Some(g) = &self.grid {
+            cfg.grid = Grid::parse(g)?;
+        }
+        Ok(cfg)
+    }
+}
+
+#[derive(Args, Clone)]
+struct ModelArgs {
+    /// Model: ecf, fastsim or polach
+    #[arg(long, default_value = "ecf")]
+    model: String,
+    /// Preset: table4.1, dry, wet, dry_sanded, wet_sanded, twin_disc, fastsim, polach
+    #[arg(long)]
+    preset: Option<String>,
+    /// Configuration JSON file ({"model":..., "preset":..., "effects":[...], "params":{...}})
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Coulomb friction coefficient (FASTSIM), dimensionless
+    #[arg(long)]
+    mu: Option<f64>,
+    /// Rolling (vehicle) speed, m/s; negative: rolling backwards (creepages over |v|)
+    #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
+    v_mps: f64,
+    /// Normal force, kN (> 0)
+    #[arg(
+        long = "fn-kN",
+        visible_alias = "fn-kn",
+        default_value_t = 110.0,
+        allow_negative_numbers = true
+    )]
+    fn_kn: f64,
+    /// Semi-axis in rolling direction at this load, mm (with --b-mm)
+    #[arg(long)]
+    a_mm: Option<f64>,
+    /// Lateral semi-axis at this load, mm (with --a-mm)
+    #[arg(long)]
+    b_mm: Option<f64>,
+    /// Bristle grid NXxNY (cells per strip x strips), e.g. 40x21
+    #[arg(long)]
+    grid: Option<String>,
+    /// Lateral creepage, dimensionless
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    cy: f64,
+    /// Spin creepage, 1/m
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    spin: f64,
+    /// Bulk temperature, degC
+    #[arg(long, default_value_t = 20.0, allow_hyphen_values = true)]
+    t_bulk_c: f64,
+    /// Parameter override NAME=VALUE (repeatable; units as in the name, see `ecf info`)
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    /// Value of a data column used by formula effects, NAME=VALUE (repeatable)
+    #[arg(long = "extra", value_name = "NAME=VALUE")]
+    extra: Vec<String>,
+}
+
+/// The fields along y = 0 of a bristle model (an error for Polach).
+fn field_of(model: &Model) -> Result<Vec<FieldPoint>, CreepError> {
+    model.field_y0().ok_or_else(|| CreepError::Config {
+        source_name: "--model".into(),
+        message: "fields exist for the bristle models (ecf, fastsim), not for polach".into(),
+    })
+}
+
+/// A strength in the CSV: -1 stands for "no limit" (infinite).
+fn finite_or_minus_one(x: f64) -> f64 {
+    if x.is_finite() {
+        x
+    } else {
+        -1.0
+    }
+}
+
+/// The instants of `--field-at-ms`: a comma-separated list of finite times >= 0 ms.
+fn parse_instants(s: &str) -> Result<Vec<f64>, CreepError> {
+    let at = s
+        .split(',')
+        .map(|x| {
+            x.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|t| t.is_finite() && *t >= 0.0 && *t <= 1e6)
+                .ok_or_else(|| CreepError::Config {
+                    source_name: "--field-at-ms".into(),
+                    message: format!("'{}': expected a time in ms within [0, 1e6]", x.trim()),
+                })
+        })
+        .collect::<Result<Vec<f64>, CreepError>>()?;
+    if at.is_empty() {
+        return Err(CreepError::Config {
+            source_name: "--field-at-ms".into(),
+            message: "give one or more instants in ms".into(),
+        });
+    }
+    Ok(at)
+}
+
+fn bad(field: &str, value: f64, expected: &str) -> CreepError {
+    CreepError::OutOfRange {
+        field: field.into(),
+        value,
+        expected: expected.into(),
+    }
+}
+
+impl ModelArgs {
+    fn config(&self) -> Result<Config, CreepError> {
+        let mut cfg = match (&self.config, &self.preset) {
+            (Some(_), Some(_)) => {
+                return Err(CreepError::Config {
+                    source_name: "--config/--preset".into(),
+                    message: "give either --preset or --config, not both".into(),
+                })
+            }
+            (Some(path), None) => Config::from_file(path)?,
+            (None, Some(p)) => Config::preset(p)?,
+            (None, None) => Config::for_model(&self.model)?,
+        };
+        if self.config.is_none()
+            && self.preset.is_some()
+            && cfg.model.name() != self.model
+            && self.model != "ecf"
+        {
+            return Err(CreepError::Config {
+                source_name: "--model".into(),
+                message: format!(
+                    "preset '{}' is a {} configuration, not {}",
+                    cfg.preset,
+                    cfg.model.name(),
+                    self.model
+                ),
+            });
+        }
+        if let Some(mu) = self.mu {
+            cfg.params
+                .set(creep_core::params::P::Mu, mu)
+                .map_err(|e| rename(e, "--mu"))?;
+        }
+        for p in &self.params {
+            let (n, v) = p.split_once('=').ok_or_else(|| CreepError::Config {
+                source_name: "--param".into(),
+                message: format!("'{p}': expected NAME=VALUE"),
+            })?;
+            let x: f64 = if v == "inf" {
+                f64::INFINITY
+            } else {
+                v.parse().map_err(|_| CreepError::Config {
+                    source_name: "--param".into(),
+                    message: format!("'{p}': value is not a number"),
+                })?
+            };
+            cfg.params.set_by_name(n, x)?;
+        }
+        if let Some(g) = &self.grid {
+            cfg.grid = Grid::parse(g)?;
+        }
+        if !(self.v_mps.is_finite() && self.v_mps.abs() <= 1000.0) {
+            return Err(bad("--v-mps", self.v_mps, "must be finite, within [-1000, 1000] m/s (negative: rolling backwards; standstill v = 0: forces from creepage alone, no frictional heat)"));
+        }
+        if !(self.fn_kn.is_finite() && self.fn_kn > 0.0) {
+            return Err(bad("--fn-kN", self.fn_kn, "must be finite and > 0 kN"));
+        }
+        match (self.a_mm, self.b_mm) {
+            (Some(a), Some(b)) => {
+                if !(a.is_finite() && a > 0.0) {
+                    return Err(bad("--a-mm", a, "must be finite and > 0 mm"));
+                }
+                if !(b.is_finite() && b > 0.0) {
+                    return Err(bad("--b-mm", b, "must be finite and > 0 mm"));
+                }
+                cfg.geometry = Geometry::SemiAxes {
+                    a: a * 1e-3,
+                    b: b * 1e-3,
+                    fn_ref: self.fn_kn * 1e3,
+                };
+            }
+            (None, None) => {}
+            _ => {
+                return Err(CreepError::Config {
+                    source_name: "--a-mm/--b-mm".into(),
+                    message: "give both semi-axes or neither".into(),
+                })
+            }
+        }
+        Ok(cfg)
+    }
+
+    /// A model with the extra column values set.
+    fn model(&self, cfg: &Config) -> Result<Model, CreepError> {
+        let mut m = Model::new(cfg)?;
+        let mut ex = Vec::new();
+        for e in &self.extra {
+            let (n, v) = e.split_once('=').ok_or_else(|| CreepError::Config {
+                source_name: "--extra".into(),
+                message: format!("'{e}': expected NAME=VALUE"),
+            })?;
+            let x: f64 = v.parse().map_err(|_| CreepError::Config {
+                source_name: "--extra".into(),
+                message: format!("'{e}': value is not a number"),
+            })?;
+            ex.push((n.to_string(), x));
+        }
+        m.set_extra(&ex)?;
+        Ok(m)
+    }
+
+    fn inputs(&self, cx: f64) -> Inputs {
+        Inputs {
+            cx,
+            cy: self.cy,
+            spin: self.spin,
+            v: self.v_mps,
+            fn_n: self.fn_kn * 1e3,
+            t_bulk: self.t_bulk_c,
+        }
+    }
+}
+
+fn rename(e: CreepError, flag: &str) -> CreepError {
+    match e {
+        CreepError::OutOfRange {
+            value, expected, ..
+        } => CreepError::OutOfRange {
+            field: flag.into(),
+            value,
+            expected,
+        },
+        other => other,
+    }
+}
+
+fn parse_list(s: &str) -> Result<Vec<f64>, CreepError> {
+    let err = |m: String| CreepError::Config {
+        source_name: "--cx".into(),
+        message: m,
+    };
+    let num = |t: &str| -> Result<f64, CreepError> {
+        let x: f64 = t
+            .trim()
+            .parse()
+            .map_err(|_| err(format!("'{t}' is not a number")))?;
+        if !x.is_finite() {
+            return Err(err(format!("'{t}' is not finite")));
+        }
+        Ok(x)
+    };
+    let parts: Vec<&str> = s.split(':').collect();
+    if parts.len() == 3 {
+        let (a, b) = (num(parts[0])?, num(parts[1])?);
+        let n: usize = parts[2]
+            .trim()
+            .parse()
+            .map_err(|_| err(format!("'{}' is not a count", parts[2])))?;
+        if !(1..=100_000).contains(&n) {
+            return Err(err(format!("count {n} must be within [1, 100000]")));
+        }
+        if n == 1 {
+            return Ok(vec![a]);
+        }
+        return Ok((0..n)
+            .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
+            .collect());
+    }
+    if parts.len() != 1 {
+        return Err(err(format!(
+            "'{s}': expected a comma separated list or start:stop:n"
+        )));
+    }
+    s.split(',').map(num).collect()
+}
+
+const OUT_HEADER: &str = "f,Fx_N,Fy_N,Mz_Nm,T_max_C,T_mean_C,P_fric_W,frac_elastic,frac_plastic,frac_sliding,a_mm,b_mm,p0_MPa";
+
+fn out_row(o: &Outputs) -> String {
+    format!(
+        "{:.8},{:.3},{:.3},{:.5},{:.3},{:.3},{:.3},{:.5},{:.5},{:.5},{:.5},{:.5},{:.3}",
+        o.f,
+        o.fx,
+        o.fy,
+        o.mz,
+        o.t_max,
+        o.t_mean,
+        o.p_fric,
+        o.frac_elastic,
+        o.frac_plastic,
+        o.frac_sliding,
+        o.a * 1e3,
+        o.b * 1e3,
+        o.p0 * 1e-6
+    )
+}
+
+fn run(cli: Cli) -> Result<(), CreepError> {
+    // The whole table is built first and printed only on success: nothing half-written.
+    let mut w: Vec<u8> = Vec::new();
+    let io = |e: std::io::Error| CreepError::Config {
+        source_name: "stdout".into(),
+        message: e.to_string(),
+    };
+    let warn = |m: &mut Model| {
+        for msg in m.take_warnings() {
+            eprintln!("warning: {msg}");
+        }
+    };
+    match cli.cmd {
+        Cmd::Curve { m, cx } => {
+            let cfg = m.config()?;
+            let list = parse_list(&cx)?;
+            let mut model = m.model(&cfg)?;
+            writeln!(w, "cx,{OUT_HEADER}").map_err(io)?;
+            for c in list {
+                let o = model.steady(&m.inputs(c)).map_err(|e| rename(e, "--cx"))?;
+                writeln!(w, "{c},{}", out_row(&o)).map_err(io)?;
+            }
+            warn(&mut model);
+        }
+        Cmd::Step {
+            m,
+            cx_from,
+            cx_to,
+            duration_ms: _,
+            dt_ms,
+            field_at_ms: Some(at),
+        } => {
+            let cfg = m.config()?;
+            let at = parse_instants(&at)?;
+            if !(dt_ms.is_finite() && dt_ms > 0.0) {
+                return Err(bad("--dt-ms", dt_ms, "must be finite and > 0 ms"));
+            }
+            let mut model = m.model(&cfg)?;
+            let mut o = model
+                .steady(&m.inputs(cx_from))
+                .map_err(|e| rename(e, "--cx-from"))?;
+            let inp = m.inputs(cx_to);
+            inp.validate().map_err(|e| rename(e, "--cx-to"))?;
+            // each instant at the whole time step nearest to it
+            let mut want: Vec<(usize, f64)> = at
+                .iter()
+                .map(|&t| ((t / dt_ms).round() as usize, t))
+                .collect();
+            want.sort_by_key(|p| p.0);
+            let last = want.last().map_or(0, |w| w.0);
+            let dt = dt_ms * 1e-3;
+            writeln!(
+                w,
+                "t_ms,f,x_mm,x_rail_mm,tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime"
+            )
+            .map_err(io)?;
+            for k in 0..=last {
+                if k > 0 {
+                    o = model.step(dt, &inp)?;
+                }
+                for &(_, t_req) in want.iter().filter(|p| p.0 == k) {
+                    let t = k as f64 * dt;
+                    for p in field_of(&model)? {
+                        writeln!(
+                            w,
+                            "{},{:.8},{:.5},{:.5},{:.1},{:.1},{:.1},{:.1},{:.1},{:.3},{}",
+                            t_req,
+                            o.f,
+                            p.x * 1e3,
+                            (p.x + m.v_mps * t) * 1e3,
+                            p.tau,
+                            p.tau_x,
+                            finite_or_minus_one(p.tau_c1),
+                            finite_or_minus_one(p.tau_c2),
+                            p.p,
+                            p.t,
+                            p.regime
+                        )
+                        .map_err(io)?;
+                    }
+                }
+            }
+            warn(&mut model);
+        }
+        Cmd::Step {
+            m,
+            cx_from,
+            cx_to,
+            duration_ms,
+            dt_ms,
+            field_at_ms: None,
+        } => {
+            let cfg = m.config()?;
+            if !(duration_ms.is_finite() && duration_ms > 0.0 && duration_ms <= 1e6) {
+                return Err(bad(
+                    "--duration-ms",
+                    duration_ms,
+                    "must be within (0, 1e6] ms",
+                ));
+            }
+            if !(dt_ms.is_finite() && dt_ms > 0.0 && dt_ms <= duration_ms) {
+                return Err(bad("--dt-ms", dt_ms, "must be > 0 and <= --duration-ms"));
+            }
+            let mut model = m.model(&cfg)?;
+            let o = model
+                .steady(&m.inputs(cx_from))
+                .map_err(|e| rename(e, "--cx-from"))?;
+            writeln!(w, "t_s,cx,{OUT_HEADER}").map_err(io)?;
+            writeln!(w, "0,{cx_from},{}", out_row(&o)).map_err(io)?;
+            let n = (duration_ms / dt_ms).round() as usize;
+            let dt = dt_ms * 1e-3;
+            let inp = m.inputs(cx_to);
+            inp.validate().map_err(|e| rename(e, "--cx-to"))?;
+            for k in 1..=n {
+                let o = model.step(dt, &inp)?;
+                writeln!(w, "{:.8},{cx_to},{}", k as f64 * dt, out_row(&o)).map_err(io)?;
+            }
+            warn(&mut model);
+        }
+        Cmd::Sine {
+            m,
+            cm,
+            ca,
+            freq_hz,
+            cycles,
+            steps_per_cycle,
+        } => {
+            let cfg = m.config()?;
+            if !(freq_hz.is_finite() && freq_hz > 0.0) {
+                return Err(bad("--freq-hz", freq_hz, "must be finite and > 0 Hz"));
+            }
+            if !(ca.is_finite() && ca >= 0.0) {
+                return Err(bad("--ca", ca, "must be finite and >= 0"));
+            }
+            if cycles == 0 || steps_per_cycle < 4 {
+                return Err(bad(
+                    "--cycles/--steps-per-cycle",
+                    cycles as f64,
+                    "need >= 1 cycle and >= 4 steps per cycle",
+                ));
+            }
+            let mut model = m.model(&cfg)?;
+            let o = model.steady(&m.inputs(cm)).map_err(|e| rename(e, "--cm"))?;
+            writeln!(w, "t_s,cx,{OUT_HEADER}").map_err(io)?;
+            writeln!(w, "0,{cm},{}", out_row(&o)).map_err(io)?;
+            let dt = 1.0 / (freq_hz * steps_per_cycle as f64);
+            for k in 1..=(cycles * steps_per_cycle) {
+                let t = k as f64 * dt;
+                // creepage held constant over the step at its end value (Eq. 4.15)
+                let c = cm + ca * (2.0 * std::f64::consts::PI * freq_hz * t).sin();
+                let o = model
+                    .step(dt, &m.inputs(c))
+                    .map_err(|e| rename(e, "--cm/--ca"))?;
+                writeln!(w, "{t:.8},{c:.8},{}", out_row(&o)).map_err(io)?;
+            }
+            warn(&mut model);
+        }
+        Cmd::Field { m, cx } => {
+            let cfg = m.config()?;
+            let mut model = m.model(&cfg)?;
+            model.steady(&m.inputs(cx)).map_err(|e| rename(e, "--cx"))?;
+            let f = field_of(&model)?;
+            writeln!(
+                w,
+                "x_mm,tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime"
+            )
+            .map_err(io)?;
+            for p in f {
+                writeln!(
+                    w,
+                    "{:.5},{:.1},{:.1},{:.1},{:.1},{:.1},{:.3},{}",
+                    p.x * 1e3,
+                    p.tau,
+                    p.tau_x,
+                    finite_or_minus_one(p.tau_c1),
+                    finite_or_minus_one(p.tau_c2),
+                    p.p,
+                    p.t,
+                    p.regime
+                )
+                .map_err(io)?;
+            }
+            warn(&mut model);
+        }
+        Cmd::Compare { d, json, plots } => match d.load()? {
+            (cfg, Data::Hpt(rows)) => {
+                measure_cmd::compare_hpt(&cfg, &d.data, &rows, json, plots.as_deref(), &mut w)?
+            }
+            (cfg, Data::Rows(data)) => {
+                measure_cmd::compare(&cfg, &data, d.threads, json, plots.as_deref(), &mut w)?
+            }
+        },
+        Cmd::Diagnose { d, json } => {
+            let (cfg, data) = d.load_rows()?;
+            measure_cmd::diagnose(&cfg, &data, d.threads, json, &mut w)?;
+        }
+        Cmd::Report {
+            d,
+            compare_with,
+            out,
+        } => {
+            let (cfg, data) = d.load_rows()?;
+            let second = match compare_with {
+                Some(p) => {
+                    let mut c = Config::from_file(&p)?;
+                    if let Some(g) = &d.grid {
+                        c.grid = Grid::parse(g)?;
+                    }
+                    Some((p.display().to_string(), c))
+                }
+                None => None,
+            };
+            let first_name = d
+                .config
+                .as_ref()
+                .map(|p| p.display().to_string())
+                .or(d.preset.clone())
+                .unwrap_or_default();
+            measure_cmd::report(&cfg, &first_name, second.as_ref(), &data, d.threads, &out)?;
+            writeln!(w, "{}", out.display()).map_err(io)?;
+        }
+        Cmd::Fit {
+            d,
+            free,
+            bounds,
+            out,
+            json,
+        } => match d.load()? {
+            (cfg, Data::Hpt(rows)) => measure_cmd::fit_hpt(
+                &cfg,
+                &d.data,
+                &rows,
+                free.as_deref(),
+                &bounds,
+                &out,
+                json,
+                &mut w,
+            )?,
+            (cfg, Data::Rows(data)) => measure_cmd::fit(
+                &cfg,
+                &data,
+                d.threads,
+                free.as_deref(),
+                &bounds,
+                &out,
+                json,
+                &mut w,
+            )?,
+        },
+        Cmd::Info => {
+            writeln!(
+                w,
+                "presets: {}",
+                creep_core::config::PRESETS
+                    .iter()
+                    .map(|p| p.0)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+            .map_err(io)?;
+            writeln!(w, "\neffects:").map_err(io)?;
+            for e in creep_core::effects::CATALOGUE {
+                writeln!(w, "  {}: {}", e.name, e.description).map_err(io)?;
+            }
+            writeln!(w, "\ncustom effects written in Rust (\"custom_effects\": [{{\"name\": ..., \"params\": {{...}}}}]):").map_err(io)?;
+            for e in creep_core::custom::catalogue() {
+                writeln!(
+                    w,
+                    "  {} (scales {}): {}",
+                    e.name(),
+                    e.target().name(),
+                    e.description()
+                )
+                .map_err(io)?;
+                for (n, d, lo, hi, m) in e.params() {
+                    writeln!(w, "    {n}: default {d}, bounds [{lo}, {hi}], {m}").map_err(io)?;
+                }
+            }
+            writeln!(w, "\nparameters (name, unit, default, bounds, meaning):").map_err(io)?;
+            for s in creep_core::params::SPECS {
+                writeln!(
+                    w,
+                    "  {:<22} {:<9} {:>10} [{}, {}]  {} (effect {})",
+                    s.name, s.unit, s.default, s.min, s.max, s.description, s.effect
+                )
+                .map_err(io)?;
+            }
+        }
+    }
+    let stdout = std::io::stdout();
+    let mut lock = stdout.lock();
+    lock.write_all(&w).map_err(io)?;
+    lock.flush().map_err(io)?;
+    Ok(())
+}
+
+mod measure_cmd;
+mod plots;
+
+use measure_cmd::Data;
+
+/// Runs the `ecf` command line with the process's arguments; the exit code is 2 on an error
+/// (printed to stderr). The `ecf` binary is this function; `scripts/build-fmu.sh --effects`
+/// builds it again with a user's effect crate linked in.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
