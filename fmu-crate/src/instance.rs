@@ -1,9 +1,11 @@
 //! One FMU instance as a safe state machine: settings, inputs, the core model, FMI call rules, and messages for the logger.
 
-use crate::vars::{self, Causality, Geo, In, Kind, Slot, Start, Var, N_AUX, N_INPUTS};
+use crate::vars::{
+    self, core_inputs, Causality, Geo, In, Kind, Out, Slot, Start, Var, N_AUX, N_GEO, N_INPUTS,
+};
 use creep_core::effects::{self, Effect};
 use creep_core::params::{self, P};
-use creep_core::{Config, Geometry, Grid, Inputs, Model, ModelKind, Outputs};
+use creep_core::{Config, Geometry, Grid, Model, ModelKind, Outputs};
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
@@ -229,7 +231,7 @@ pub struct Settings {
     /// Geometry mode: 0 configuration, 1 semi-axes, 2 curvatures.
     pub geometry: i32,
     /// Geometry values set by the importer (a_ref, b_ref, FN_ref, Rx, Ry), SI.
-    pub geo: [Option<f64>; 5],
+    pub geo: [Option<f64>; N_GEO],
 }
 
 /// Everything an FMU state holds: settings, inputs, time and the whole core model
@@ -250,25 +252,11 @@ pub struct Snapshot {
 
 /// The first non-finite output, as `name = value`.
 fn non_finite(o: &Outputs) -> Option<String> {
-    const NAMES: [&str; 13] = [
-        "Fx",
-        "Fy",
-        "Mz",
-        "f",
-        "T_max",
-        "T_mean",
-        "P_fric",
-        "frac_elastic",
-        "frac_plastic",
-        "frac_sliding",
-        "a",
-        "b",
-        "p0",
-    ];
-    let a = o.to_array();
-    a.iter()
-        .position(|x| !x.is_finite())
-        .map(|i| format!("{} = {}", NAMES[i], a[i]))
+    Out::ALL
+        .iter()
+        .map(|k| (k.name(), k.of(o)))
+        .find(|(_, x)| !x.is_finite())
+        .map(|(n, x)| format!("{n} = {x}"))
 }
 
 /// The data column values of a configuration with formula or custom effects (None
@@ -291,7 +279,7 @@ pub fn extras_for(
             ));
         };
         let x = match *src {
-            ColumnSource::Aux(k) => inputs[6 + k],
+            ColumnSource::Aux(k) => inputs[In::Aux(k).index()],
             ColumnSource::Const(x) => x,
         };
         out.push((name, x));
@@ -305,12 +293,10 @@ pub fn validate_snapshot(s: &Snapshot) -> Result<(), String> {
     if !s.time.is_finite() {
         return Err(format!("time = {} s is not finite", s.time));
     }
-    for (i, x) in s.inputs.iter().enumerate() {
+    for i in In::ALL {
+        let x = s.inputs[i.index()];
         if !x.is_finite() {
-            return Err(format!(
-                "input {} = {x} is not finite",
-                vars::INPUT_NAMES[i]
-            ));
+            return Err(format!("input {} = {x} is not finite", i.name()));
         }
     }
     core_inputs(&s.inputs)
@@ -374,41 +360,6 @@ pub struct Instance {
     logs: Vec<LogMsg>,
     log_events: bool,
     seen: HashSet<String>,
-}
-
-fn geo_index(g: Geo) -> usize {
-    match g {
-        Geo::ARef => 0,
-        Geo::BRef => 1,
-        Geo::FnRef => 2,
-        Geo::Rx => 3,
-        Geo::Ry => 4,
-    }
-}
-
-fn input_index(i: In) -> usize {
-    match i {
-        In::Cx => 0,
-        In::Cy => 1,
-        In::Spin => 2,
-        In::V => 3,
-        In::Fn => 4,
-        In::TBulk => 5,
-        In::Aux(k) => 6 + k,
-    }
-}
-
-/// The core inputs of FMU input values (FN <= 0 is lift-off: F_N = 0).
-pub fn core_inputs(x: &[f64; N_INPUTS]) -> Inputs {
-    Inputs {
-        cx: x[0],
-        cy: x[1],
-        spin: x[2],
-        v: x[3],
-        // NaN stays NaN so that validation rejects it
-        fn_n: if x[4] < 0.0 { 0.0 } else { x[4] },
-        t_bulk: x[5],
-    }
 }
 
 /// Turns a file URI (fmuResourceLocation) into a path: `file:///a/b%20c/` -> `/a/b c/`.
@@ -476,7 +427,7 @@ impl Instance {
         self.settings = Settings::default();
         for v in &self.table {
             if let (Slot::Input(i), Start::Real(x)) = (v.slot, &v.start) {
-                self.inputs[input_index(i)] = *x;
+                self.inputs[i.index()] = *x;
             }
         }
         self.phase = Phase::Instantiated;
@@ -614,18 +565,12 @@ impl Instance {
             return s;
         }
         let mut st = Status::Ok;
-        if self.settings.geometry != 1 {
-            for (i, n) in ["a_ref", "b_ref", "FN_ref"].iter().enumerate() {
-                if self.settings.geo[i].is_some() {
-                    st = st.max(self.warn(format!("fmi2ExitInitializationMode: {n} was set but geometry = {} (not 1, semi-axes): {n} is ignored", self.settings.geometry)));
-                }
-            }
-        }
-        if self.settings.geometry != 2 {
-            for (i, n) in ["Rx", "Ry"].iter().enumerate() {
-                if self.settings.geo[3 + i].is_some() {
-                    st = st.max(self.warn(format!("fmi2ExitInitializationMode: {n} was set but geometry = {} (not 2, curvatures): {n} is ignored", self.settings.geometry)));
-                }
+        let mode = self.settings.geometry;
+        for g in Geo::ALL {
+            if g.mode() != mode && self.settings.geo[g.index()].is_some() {
+                let (n, m) = (g.name(), g.mode());
+                let what = if m == 1 { "semi-axes" } else { "curvatures" };
+                st = st.max(self.warn(format!("fmi2ExitInitializationMode: {n} was set but geometry = {mode} (not {m}, {what}): {n} is ignored")));
             }
         }
         if self.restored && self.model.is_some() {
@@ -882,7 +827,7 @@ impl Instance {
             match &self
                 .table
                 .iter()
-                .find(|v| v.slot == Slot::Geo(GEOS[i]))
+                .find(|v| v.slot == Slot::Geo(Geo::ALL[i]))
                 .map(|v| v.start.clone())
             {
                 Some(Start::Real(x)) => *x,
@@ -987,7 +932,7 @@ impl Instance {
         self.check_gettable(F)?;
         let v = self.var(F, vr, Kind::Real)?;
         match v.slot {
-            Slot::Input(i) => Ok(self.inputs[input_index(i)]),
+            Slot::Input(i) => Ok(self.inputs[i.index()]),
             Slot::Output(o) => match self.current_outputs() {
                 Ok(out) => Ok(o.of(&out)),
                 Err(e) => Err(self.error(format!("{F}: {} cannot be computed: {e}", v.name))),
@@ -1002,7 +947,7 @@ impl Instance {
                 }
             }
             Slot::Geo(g) => {
-                let i = geo_index(g);
+                let i = g.index();
                 if let Some(x) = self.settings.geo[i] {
                     return Ok(x);
                 }
@@ -1154,7 +1099,7 @@ impl Instance {
                     return refuse(self, "inputs must be finite".into());
                 }
                 let mut cand = self.inputs;
-                cand[input_index(i)] = *x;
+                cand[i.index()] = *x;
                 if let Err(e) = core_inputs(&cand).validate() {
                     return refuse(self, e.to_string());
                 }
@@ -1233,7 +1178,7 @@ impl Instance {
         match (v.slot, x) {
             (Slot::Input(i), Value::Real(x)) => {
                 let x = *x;
-                self.inputs[input_index(i)] = x;
+                self.inputs[i.index()] = x;
                 self.model_current = false;
                 return match i {
                     In::Cx | In::Cy if x.abs() > 1.0 => self.warn(format!(
@@ -1258,7 +1203,7 @@ impl Instance {
                 }
             }
             (Slot::Geo(g), Value::Real(x)) => {
-                self.settings.geo[geo_index(g)] = (v.start != Start::Real(*x)).then_some(*x)
+                self.settings.geo[g.index()] = (v.start != Start::Real(*x)).then_some(*x)
             }
             (Slot::GeometryMode, Value::Integer(x)) => self.settings.geometry = *x,
             (Slot::Nx, Value::Integer(x)) => self.settings.nx = (*x > 0).then_some(*x as usize),
@@ -1383,9 +1328,6 @@ impl Instance {
         Status::Ok
     }
 }
-
-/// Geometry parameters in the order of `Settings::geo`.
-pub const GEOS: [Geo; 5] = [Geo::ARef, Geo::BRef, Geo::FnRef, Geo::Rx, Geo::Ry];
 
 /// Index of an effect in the catalogue (serialization).
 pub fn effect_index(e: Effect) -> u8 {

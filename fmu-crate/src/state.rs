@@ -1,10 +1,11 @@
 //! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
 //!
-//! Layout (version 2): magic `ECFFMUST`, u32 version, f64 time, 10 × f64 inputs (cx, cy,
-//! spin, v, FN, T_bulk, aux1..aux4), settings (model, model_set, preset, config_file, columns,
+//! Layout (version 2): magic `ECFFMUST`, u32 version, f64 time, `N_INPUTS` × f64 inputs in
+//! the order of `vars::In::ALL` (cx, cy, spin, v, FN, T_bulk, aux1..aux4; the test
+//! `input_layout_of_version_2` pins it), settings (model, model_set, preset, config_file, columns,
 //! set parameters as (u32 registry index, f64),
 //! set effects as (u8 catalogue index, u8), nx, ny as u32 (0 = not set), i32 geometry,
-//! 5 × (u8 present, f64)), u8 + configuration (u8 model, u32 effect bits, u32 count + f64
+//! `N_GEO` = 5 × (u8 present, f64) in the order of `vars::Geo::ALL`), u8 + configuration (u8 model, u32 effect bits, u32 count + f64
 //! per parameter, u8 bound, u32 nx, u32 ny, u8 geometry kind + 3 × f64, preset name, u8 +
 //! (if formula or custom effects) the configuration as JSON and, per formula then custom
 //! effect, u32 count + f64 parameter values), u8 + u32 length +
@@ -386,6 +387,24 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
 mod tests {
     use super::*;
     use crate::instance::{Instance, Status};
+
+    #[test]
+    fn input_layout_of_version_2() {
+        // the serialized state stores the inputs and geometry values in declaration order;
+        // a change of these lists changes the format and needs a new VERSION
+        let inputs: Vec<String> = crate::vars::In::ALL.iter().map(|i| i.name()).collect();
+        assert_eq!(
+            inputs,
+            ["cx", "cy", "spin", "v", "FN", "T_bulk", "aux1", "aux2", "aux3", "aux4"],
+            "input layout of state format version {VERSION}"
+        );
+        let geo: Vec<&str> = crate::vars::Geo::ALL.iter().map(|g| g.name()).collect();
+        assert_eq!(
+            geo,
+            ["a_ref", "b_ref", "FN_ref", "Rx", "Ry"],
+            "geometry layout of state format version {VERSION}"
+        );
+    }
 
     #[test]
     fn round_trip_continues_bit_for_bit_and_corruption_is_refused() {
