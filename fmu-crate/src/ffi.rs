@@ -11,9 +11,10 @@
 #![allow(non_snake_case)]
 #![allow(clippy::missing_safety_doc)]
 
-use crate::instance::{Instance, LogMsg, Phase, Snapshot, Status, Value};
+use crate::instance::{Instance, LogMsg, Phase, Snapshot, Status};
 use crate::model_description::{guid, MODEL_IDENTIFIER};
 use crate::state;
+use crate::vars::Value;
 use fmi_sys::fmi2 as f;
 use std::collections::BTreeMap;
 use std::ffi::{c_char, CStr, CString};

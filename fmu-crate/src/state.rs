@@ -12,11 +12,10 @@
 //! the bytes of `creep_core::Model::save_state` (the whole bristle grid and heat histories).
 //! Strings are u32 length + UTF-8. Nothing follows the last field.
 
-use crate::instance::{
-    effect_index, effect_of, extras_for, param_of, validate_snapshot, Settings, Snapshot,
-};
-use creep_core::effects::EffectSet;
-use creep_core::params::{self, Params};
+use crate::instance::{validate_snapshot, Snapshot};
+use crate::settings::{extras_for, Settings};
+use creep_core::effects::{self, Effect, EffectSet};
+use creep_core::params::{self, Params, P};
 use creep_core::{Bound, Config, Geometry, Grid, Model, ModelKind};
 
 /// Magic bytes at the start of a serialized FMU state.
@@ -98,6 +97,24 @@ impl<'a> R<'a> {
             b => Err(format!("bad boolean byte {b} at {}", self.p - 1)),
         }
     }
+}
+
+/// Index of an effect in the catalogue (serialization).
+fn effect_index(e: Effect) -> u8 {
+    effects::CATALOGUE
+        .iter()
+        .position(|i| i.effect == e)
+        .unwrap_or(0) as u8
+}
+
+/// Effect of a catalogue index.
+fn effect_of(i: u8) -> Option<Effect> {
+    effects::CATALOGUE.get(i as usize).map(|i| i.effect)
+}
+
+/// Parameter of a registry index.
+fn param_of(i: u32) -> Option<P> {
+    params::SPECS.get(i as usize).map(|s| s.id)
 }
 
 fn put_config(w: &mut W, c: &Config) {

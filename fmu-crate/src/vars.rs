@@ -189,11 +189,18 @@ macro_rules! contact_variables {
                 }
             }
 
+            /// Start value (a value equal to it means 'not set', see [`UNSET`]).
+            pub fn start(self) -> f64 {
+                match self {
+                    $( Geo::$geo => $geo_start, )*
+                }
+            }
+
             fn var(self) -> Var {
-                let (vr, unit, start, description) = match self {
-                    $( Geo::$geo => ($geo_vr, $geo_unit, $geo_start, $geo_desc), )*
+                let (vr, unit, description) = match self {
+                    $( Geo::$geo => ($geo_vr, $geo_unit, $geo_desc), )*
                 };
-                let mut v = real(self.name().into(), vr, Causality::Parameter, Some(unit), Start::Real(start), format!("{description}; {UNSET}"), Slot::Geo(self));
+                let mut v = real(self.name().into(), vr, Causality::Parameter, Some(unit), Start::Real(self.start()), format!("{description}; {UNSET}"), Slot::Geo(self));
                 v.min = Some(0.0);
                 v
             }
@@ -339,6 +346,41 @@ pub enum Slot {
     ConfigFile,
     /// Data columns of the configuration: which auxiliary input or constant feeds each.
     Columns,
+}
+
+/// A value of an fmi2Set* or fmi2Get* call.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// fmi2Real.
+    Real(f64),
+    /// fmi2Integer.
+    Integer(i32),
+    /// fmi2Boolean.
+    Boolean(bool),
+    /// fmi2String.
+    String(String),
+}
+
+impl Value {
+    /// Base type of the value.
+    pub fn kind(&self) -> Kind {
+        match self {
+            Value::Real(_) => Kind::Real,
+            Value::Integer(_) => Kind::Integer,
+            Value::Boolean(_) => Kind::Boolean,
+            Value::String(_) => Kind::String,
+        }
+    }
+
+    /// The value as it appears in messages.
+    pub fn show(&self) -> String {
+        match self {
+            Value::Real(x) => x.to_string(),
+            Value::Integer(x) => x.to_string(),
+            Value::Boolean(x) => x.to_string(),
+            Value::String(x) => format!("'{x}'"),
+        }
+    }
 }
 
 /// Start value of a variable.
