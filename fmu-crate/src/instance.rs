@@ -48,6 +48,66 @@ impl Phase {
     }
 }
 
+/// A call whose phase the instance checks (a row of [`Call::allowed_in`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Call {
+    /// fmi2SetupExperiment.
+    SetupExperiment,
+    /// fmi2EnterInitializationMode.
+    EnterInitializationMode,
+    /// fmi2ExitInitializationMode.
+    ExitInitializationMode,
+    /// fmi2DoStep.
+    DoStep,
+    /// fmi2Terminate.
+    Terminate,
+    /// fmi2GetReal, fmi2GetInteger, fmi2GetBoolean, fmi2GetString.
+    Get,
+    /// fmi2Set* of an input.
+    SetInput,
+    /// fmi2Set* of a (fixed) parameter.
+    SetParameter,
+    /// fmi2Set* of an output.
+    SetOutput,
+    /// fmi2GetFMUstate.
+    GetFMUstate,
+    /// fmi2SetFMUstate with a state taken before initialization (it holds no model).
+    SetFMUstateUninitialized,
+}
+
+impl Call {
+    /// The FMI 2.0 Co-Simulation call rules, one table (like `MASK_fmi2*` in the Reference
+    /// FMUs' src/fmi2Functions.c): the phases in which each call is allowed, in [`Phase`]
+    /// order. Calls not listed (fmi2Reset, fmi2FreeInstance, fmi2SetDebugLogging,
+    /// fmi2SetFMUstate of an initialized state, the FMU state and status functions) are
+    /// allowed in every phase.
+    pub const fn allowed_in(self) -> &'static [Phase] {
+        use Phase::*;
+        match self {
+            Call::SetupExperiment => &[Instantiated],
+            Call::EnterInitializationMode => &[Instantiated],
+            Call::ExitInitializationMode => &[Initialization],
+            Call::DoStep => &[StepComplete],
+            Call::Terminate => &[StepComplete],
+            Call::Get => &[Initialization, StepComplete, Terminated, Error],
+            Call::SetInput => &[Instantiated, Initialization, StepComplete],
+            Call::SetParameter => &[Instantiated, Initialization],
+            Call::SetOutput => &[],
+            Call::GetFMUstate => &[Instantiated, Initialization, StepComplete, Terminated],
+            Call::SetFMUstateUninitialized => &[Instantiated, Initialization, Error],
+        }
+    }
+
+    /// The call of a set of a variable of this causality.
+    pub fn set(c: Causality) -> Call {
+        match c {
+            Causality::Input => Call::SetInput,
+            Causality::Parameter => Call::SetParameter,
+            Causality::Output => Call::SetOutput,
+        }
+    }
+}
+
 /// A message for the importer's logger.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LogMsg {
@@ -292,11 +352,17 @@ impl Instance {
         st
     }
 
-    fn check_phase(&mut self, func: &str, allowed: &[Phase]) -> Result<(), Status> {
-        if allowed.contains(&self.phase) {
+    /// True if the call table allows `call` in the current phase.
+    fn allows(&self, call: Call) -> bool {
+        call.allowed_in().contains(&self.phase)
+    }
+
+    /// Checks `call` against the call table; logs the refusal.
+    fn check_phase(&mut self, func: &str, call: Call) -> Result<(), Status> {
+        if self.allows(call) {
             Ok(())
         } else {
-            let names: Vec<&str> = allowed.iter().map(|p| p.name()).collect();
+            let names: Vec<&str> = call.allowed_in().iter().map(|p| p.name()).collect();
             Err(self.error(format!(
                 "{func}: not allowed in state {} (allowed in: {})",
                 self.phase.name(),
@@ -307,7 +373,7 @@ impl Instance {
 
     /// fmi2SetupExperiment.
     pub fn setup_experiment(&mut self, start: f64) -> Status {
-        if let Err(s) = self.check_phase("fmi2SetupExperiment", &[Phase::Instantiated]) {
+        if let Err(s) = self.check_phase("fmi2SetupExperiment", Call::SetupExperiment) {
             return s;
         }
         if !start.is_finite() {
@@ -321,7 +387,9 @@ impl Instance {
 
     /// fmi2EnterInitializationMode.
     pub fn enter_initialization(&mut self) -> Status {
-        if let Err(s) = self.check_phase("fmi2EnterInitializationMode", &[Phase::Instantiated]) {
+        if let Err(s) =
+            self.check_phase("fmi2EnterInitializationMode", Call::EnterInitializationMode)
+        {
             return s;
         }
         self.phase = Phase::Initialization;
@@ -331,7 +399,8 @@ impl Instance {
     /// fmi2ExitInitializationMode: resolves the configuration, builds the model and sets
     /// its bristle grid to the steady state of the current inputs.
     pub fn exit_initialization(&mut self) -> Status {
-        if let Err(s) = self.check_phase("fmi2ExitInitializationMode", &[Phase::Initialization]) {
+        if let Err(s) = self.check_phase("fmi2ExitInitializationMode", Call::ExitInitializationMode)
+        {
             return s;
         }
         let mut st = Status::Ok;
@@ -365,7 +434,7 @@ impl Instance {
 
     /// fmi2Terminate.
     pub fn terminate(&mut self) -> Status {
-        if let Err(s) = self.check_phase("fmi2Terminate", &[Phase::StepComplete]) {
+        if let Err(s) = self.check_phase("fmi2Terminate", Call::Terminate) {
             return s;
         }
         self.phase = Phase::Terminated;
@@ -395,7 +464,7 @@ impl Instance {
 
     /// fmi2DoStep: advances the contact by `h` seconds with the inputs held constant.
     pub fn do_step(&mut self, t: f64, h: f64) -> Status {
-        if let Err(s) = self.check_phase("fmi2DoStep", &[Phase::StepComplete]) {
+        if let Err(s) = self.check_phase("fmi2DoStep", Call::DoStep) {
             return s;
         }
         if !(h.is_finite() && h >= 0.0) {
@@ -460,17 +529,7 @@ impl Instance {
     }
 
     fn check_settable(&mut self, func: &str, v: &Var) -> Result<(), Status> {
-        let ok = match v.causality {
-            Causality::Output => false,
-            Causality::Input => matches!(
-                self.phase,
-                Phase::Instantiated | Phase::Initialization | Phase::StepComplete
-            ),
-            Causality::Parameter => {
-                matches!(self.phase, Phase::Instantiated | Phase::Initialization)
-            }
-        };
-        if ok {
+        if self.allows(Call::set(v.causality)) {
             return Ok(());
         }
         let why = match v.causality {
@@ -488,15 +547,7 @@ impl Instance {
     }
 
     fn check_gettable(&mut self, func: &str) -> Result<(), Status> {
-        self.check_phase(
-            func,
-            &[
-                Phase::Initialization,
-                Phase::StepComplete,
-                Phase::Terminated,
-                Phase::Error,
-            ],
-        )
+        self.check_phase(func, Call::Get)
     }
 
     fn settings_changed(&mut self) {
@@ -755,7 +806,7 @@ impl Instance {
     /// fmi2GetFMUstate: a copy of everything the instance holds (refused in the error
     /// state, whose outputs are not valid).
     pub fn try_get_state(&mut self) -> Result<Snapshot, Status> {
-        if self.phase == Phase::Error {
+        if !self.allows(Call::GetFMUstate) {
             return Err(self.error(
                 "fmi2GetFMUstate: the instance is in the error state; its state is not saved (fmi2Reset or fmi2SetFMUstate first)".into(),
             ));
@@ -800,7 +851,7 @@ impl Instance {
                 "{F}: the state is refused ({e}); the instance is unchanged"
             ));
         }
-        if s.model.is_none() && matches!(self.phase, Phase::StepComplete | Phase::Terminated) {
+        if s.model.is_none() && !self.allows(Call::SetFMUstateUninitialized) {
             return self.error(format!(
                 "{F}: the state was taken before initialization and cannot be set in state {}",
                 self.phase.name()
