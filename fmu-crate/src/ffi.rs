@@ -846,174 +846,57 @@ fn unsupported(comp: &mut Component, func: &str, why: &str) -> Status {
     ))
 }
 
+/// Exports each unsupported function (its arguments after the instance, and why it is not
+/// supported): it returns fmi2Error with a message.
+macro_rules! unsupported {
+    ($($name:ident($($arg:ident: $ty:ty),*) => $why:expr;)*) => {
+        $(
+            #[no_mangle]
+            pub unsafe extern "C" fn $name(c: f::fmi2Component, $($arg: $ty),*) -> S {
+                const F: &str = stringify!($name);
+                unsafe { with(c, F, |comp| unsupported(comp, F, $why)) }
+            }
+        )*
+    };
+}
+
 const ME: &str = "the FMU is Co-Simulation only";
 
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
-    c: f::fmi2Component,
-    _vUnknown_ref: *const f::fmi2ValueReference,
-    _nUnknown: usize,
-    _vKnown_ref: *const f::fmi2ValueReference,
-    _nKnown: usize,
-    _dvKnown: *const f::fmi2Real,
-    _dvUnknown: *mut f::fmi2Real,
-) -> S {
-    const F: &str = "fmi2GetDirectionalDerivative";
-    unsafe {
-        with(c, F, |comp| {
-            unsupported(comp, F, "providesDirectionalDerivative = false")
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
-    c: f::fmi2Component,
-    _vr: *const f::fmi2ValueReference,
-    _nvr: usize,
-    _order: *const f::fmi2Integer,
-    _value: *const f::fmi2Real,
-) -> S {
-    const F: &str = "fmi2SetRealInputDerivatives";
-    unsafe {
-        with(c, F, |comp| {
-            unsupported(comp, F, "canInterpolateInputs = false")
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
-    c: f::fmi2Component,
-    _vr: *const f::fmi2ValueReference,
-    _nvr: usize,
-    _order: *const f::fmi2Integer,
-    _value: *mut f::fmi2Real,
-) -> S {
-    const F: &str = "fmi2GetRealOutputDerivatives";
-    unsafe {
-        with(c, F, |comp| {
-            unsupported(comp, F, "maxOutputDerivativeOrder = 0")
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2EnterEventMode(c: f::fmi2Component) -> S {
-    unsafe {
-        with(c, "fmi2EnterEventMode", |comp| {
-            unsupported(comp, "fmi2EnterEventMode", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2NewDiscreteStates(
-    c: f::fmi2Component,
-    _info: *mut f::fmi2EventInfo,
-) -> S {
-    unsafe {
-        with(c, "fmi2NewDiscreteStates", |comp| {
-            unsupported(comp, "fmi2NewDiscreteStates", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: f::fmi2Component) -> S {
-    unsafe {
-        with(c, "fmi2EnterContinuousTimeMode", |comp| {
-            unsupported(comp, "fmi2EnterContinuousTimeMode", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
-    c: f::fmi2Component,
-    _noSetFMUStatePriorToCurrentPoint: f::fmi2Boolean,
-    _enterEventMode: *mut f::fmi2Boolean,
-    _terminateSimulation: *mut f::fmi2Boolean,
-) -> S {
-    unsafe {
-        with(c, "fmi2CompletedIntegratorStep", |comp| {
-            unsupported(comp, "fmi2CompletedIntegratorStep", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetTime(c: f::fmi2Component, _time: f::fmi2Real) -> S {
-    unsafe {
-        with(c, "fmi2SetTime", |comp| {
-            unsupported(comp, "fmi2SetTime", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetContinuousStates(
-    c: f::fmi2Component,
-    _x: *const f::fmi2Real,
-    _nx: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2SetContinuousStates", |comp| {
-            unsupported(comp, "fmi2SetContinuousStates", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetDerivatives(
-    c: f::fmi2Component,
-    _derivatives: *mut f::fmi2Real,
-    _nx: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2GetDerivatives", |comp| {
-            unsupported(comp, "fmi2GetDerivatives", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetEventIndicators(
-    c: f::fmi2Component,
-    _eventIndicators: *mut f::fmi2Real,
-    _ni: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2GetEventIndicators", |comp| {
-            unsupported(comp, "fmi2GetEventIndicators", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetContinuousStates(
-    c: f::fmi2Component,
-    _x: *mut f::fmi2Real,
-    _nx: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2GetContinuousStates", |comp| {
-            unsupported(comp, "fmi2GetContinuousStates", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
-    c: f::fmi2Component,
-    _x_nominal: *mut f::fmi2Real,
-    _nx: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2GetNominalsOfContinuousStates", |comp| {
-            unsupported(comp, "fmi2GetNominalsOfContinuousStates", ME)
-        })
-    }
+unsupported! {
+    fmi2GetDirectionalDerivative(
+        _vUnknown_ref: *const f::fmi2ValueReference,
+        _nUnknown: usize,
+        _vKnown_ref: *const f::fmi2ValueReference,
+        _nKnown: usize,
+        _dvKnown: *const f::fmi2Real,
+        _dvUnknown: *mut f::fmi2Real
+    ) => "providesDirectionalDerivative = false";
+    fmi2SetRealInputDerivatives(
+        _vr: *const f::fmi2ValueReference,
+        _nvr: usize,
+        _order: *const f::fmi2Integer,
+        _value: *const f::fmi2Real
+    ) => "canInterpolateInputs = false";
+    fmi2GetRealOutputDerivatives(
+        _vr: *const f::fmi2ValueReference,
+        _nvr: usize,
+        _order: *const f::fmi2Integer,
+        _value: *mut f::fmi2Real
+    ) => "maxOutputDerivativeOrder = 0";
+    fmi2EnterEventMode() => ME;
+    fmi2NewDiscreteStates(_info: *mut f::fmi2EventInfo) => ME;
+    fmi2EnterContinuousTimeMode() => ME;
+    fmi2CompletedIntegratorStep(
+        _noSetFMUStatePriorToCurrentPoint: f::fmi2Boolean,
+        _enterEventMode: *mut f::fmi2Boolean,
+        _terminateSimulation: *mut f::fmi2Boolean
+    ) => ME;
+    fmi2SetTime(_time: f::fmi2Real) => ME;
+    fmi2SetContinuousStates(_x: *const f::fmi2Real, _nx: usize) => ME;
+    fmi2GetDerivatives(_derivatives: *mut f::fmi2Real, _nx: usize) => ME;
+    fmi2GetEventIndicators(_eventIndicators: *mut f::fmi2Real, _ni: usize) => ME;
+    fmi2GetContinuousStates(_x: *mut f::fmi2Real, _nx: usize) => ME;
+    fmi2GetNominalsOfContinuousStates(_x_nominal: *mut f::fmi2Real, _nx: usize) => ME;
 }
 
 // ---------------------------------------------------------------------------------------
