@@ -460,33 +460,26 @@ impl Settings {
         };
         grid.validate().map_err(|e| e.to_string())?;
         cfg.grid = grid;
-        let base_semi = match cfg.geometry {
-            Geometry::SemiAxes { a, b, fn_ref } => Some([a, b, fn_ref]),
-            _ => None,
+        // a geometry value: as set, else the configuration's, else the start value
+        let base = cfg.geometry;
+        let g = |g: Geo| {
+            s.geo[g.index()]
+                .or(geo_of(base, g))
+                .unwrap_or_else(|| g.start())
         };
-        let set = |g: Geo| s.geo[g.index()];
         match s.geometry {
             1 => {
-                let g = |g: Geo, i: usize| {
-                    set(g)
-                        .or(base_semi.map(|b| b[i]))
-                        .unwrap_or_else(|| g.start())
-                };
                 cfg.geometry = Geometry::SemiAxes {
-                    a: g(Geo::ARef, 0),
-                    b: g(Geo::BRef, 1),
-                    fn_ref: g(Geo::FnRef, 2),
-                };
+                    a: g(Geo::ARef),
+                    b: g(Geo::BRef),
+                    fn_ref: g(Geo::FnRef),
+                }
             }
             2 => {
-                let (rx0, ry0) = match cfg.geometry {
-                    Geometry::Curvatures { rx, ry } => (rx, ry),
-                    _ => (Geo::Rx.start(), Geo::Ry.start()),
-                };
                 cfg.geometry = Geometry::Curvatures {
-                    rx: set(Geo::Rx).unwrap_or(rx0),
-                    ry: set(Geo::Ry).unwrap_or(ry0),
-                };
+                    rx: g(Geo::Rx),
+                    ry: g(Geo::Ry),
+                }
             }
             _ => {}
         }
