@@ -1,4 +1,4 @@
-//! One FMU instance as a safe state machine: settings, inputs, the core model, FMI call rules, and messages for the logger.
+//! One FMU instance as a safe FMI state machine: the call rules (one table, [`Call::allowed_in`]), the inputs, the core model and messages for the logger; the contact settings live in [`crate::settings`].
 
 use crate::settings::{extras_for, Settings};
 use crate::vars::{

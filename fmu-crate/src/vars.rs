@@ -1,4 +1,21 @@
-//! The one table of FMU variables: name, value reference, type, causality, unit, start, description; drives get/set and the XML.
+//! The one table of FMU variables: name, value reference, type, causality, unit, start, description; drives get/set, the state layout and the XML.
+//!
+//! Each variable is declared once. The contact's inputs, outputs and geometry parameters
+//! are the lines of `contact_variables!` below (the list is the order of modelDescription.xml
+//! and of the serialized state); the material, friction and thermal parameters and the
+//! effect switches come from creep-core's registries (`params::SPECS`, `effects::CATALOGUE`);
+//! the remaining parameters (geometry, nx, ny, threads, scheme, model, preset, config_file,
+//! columns) are one [`Var`] each in [`table`].
+//!
+//! Adding a variable:
+//! * an output: one line in `outputs` (name, value reference, unit, the field of
+//!   `creep_core::Outputs`, description); get, XML and ModelStructure follow;
+//! * an input: one line in `inputs` (the field of `creep_core::Inputs`); get/set, validation,
+//!   the core inputs and the state layout follow. The serialized state then has one more
+//!   value: raise `state::VERSION` (the test `input_layout_of_version_2` says so);
+//! * a material parameter or an effect: its entry in creep-core's registry, nothing here;
+//! * another parameter: a [`Var`] in [`table`] with a new [`Slot`], and what it does in
+//!   `settings.rs` (check, apply, get, and its use in `Settings::resolve`).
 
 use creep_core::config::DEFAULT_GEOMETRY;
 use creep_core::effects::{self, Effect};
