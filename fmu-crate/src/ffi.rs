@@ -387,7 +387,7 @@ pub unsafe extern "C" fn fmi2Reset(c: f::fmi2Component) -> S {
 // Getting and setting values
 
 macro_rules! getter {
-    ($fname:ident, $name:literal, $t:ty, $method:ident, $conv:expr) => {
+    ($fname:ident, $t:ty, $method:ident, $conv:expr) => {
         #[no_mangle]
         pub unsafe extern "C" fn $fname(
             c: f::fmi2Component,
@@ -395,10 +395,11 @@ macro_rules! getter {
             nvr: usize,
             value: *mut $t,
         ) -> S {
+            const F: &str = stringify!($fname);
             unsafe {
-                with(c, $name, |comp| {
+                with(c, F, |comp| {
                     let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
-                        return null_arg(&mut comp.inst, $name, "vr or value");
+                        return null_arg(&mut comp.inst, F, "vr or value");
                     };
                     for (r, o) in vrs.iter().zip(out.iter_mut()) {
                         match comp.inst.$method(*r) {
@@ -414,7 +415,7 @@ macro_rules! getter {
 }
 
 macro_rules! setter {
-    ($fname:ident, $name:literal, $t:ty, $conv:expr) => {
+    ($fname:ident, $t:ty, $conv:expr) => {
         #[no_mangle]
         pub unsafe extern "C" fn $fname(
             c: f::fmi2Component,
@@ -422,57 +423,33 @@ macro_rules! setter {
             nvr: usize,
             value: *const $t,
         ) -> S {
+            const F: &str = stringify!($fname);
             unsafe {
-                with(c, $name, |comp| {
+                with(c, F, |comp| {
                     let (Some(vrs), Some(vals)) = (slice(vr, nvr), slice(value, nvr)) else {
-                        return null_arg(&mut comp.inst, $name, "vr or value");
+                        return null_arg(&mut comp.inst, F, "vr or value");
                     };
                     let items: Vec<(u32, Value)> = vrs
                         .iter()
                         .zip(vals.iter())
                         .map(|(r, x)| (*r, $conv(*x)))
                         .collect();
-                    comp.inst.set_values($name, &items)
+                    comp.inst.set_values(F, &items)
                 })
             }
         }
     };
 }
 
-getter!(
-    fmi2GetReal,
-    "fmi2GetReal",
-    f::fmi2Real,
-    get_real,
-    |x: f64| x
-);
-getter!(
-    fmi2GetInteger,
-    "fmi2GetInteger",
-    f::fmi2Integer,
-    get_integer,
-    |x: i32| x
-);
-getter!(
-    fmi2GetBoolean,
-    "fmi2GetBoolean",
-    f::fmi2Boolean,
-    get_boolean,
-    |x: bool| x as f::fmi2Boolean
-);
-setter!(fmi2SetReal, "fmi2SetReal", f::fmi2Real, Value::Real);
-setter!(
-    fmi2SetInteger,
-    "fmi2SetInteger",
-    f::fmi2Integer,
-    Value::Integer
-);
-setter!(
-    fmi2SetBoolean,
-    "fmi2SetBoolean",
-    f::fmi2Boolean,
-    |x: f::fmi2Boolean| Value::Boolean(x != 0)
-);
+getter!(fmi2GetReal, f::fmi2Real, get_real, |x: f64| x);
+getter!(fmi2GetInteger, f::fmi2Integer, get_integer, |x: i32| x);
+getter!(fmi2GetBoolean, f::fmi2Boolean, get_boolean, |x: bool| x
+    as f::fmi2Boolean);
+setter!(fmi2SetReal, f::fmi2Real, Value::Real);
+setter!(fmi2SetInteger, f::fmi2Integer, Value::Integer);
+setter!(fmi2SetBoolean, f::fmi2Boolean, |x: f::fmi2Boolean| {
+    Value::Boolean(x != 0)
+});
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetString(
