@@ -160,7 +160,7 @@ def scenario(build, name, params):
     rec = []
     r = Run(build, rec, name)
     init(r, params)
-    t = drive(r, 60, sum(map(ord, name)))
+    drive(r, 60, sum(map(ord, name)))
     r.call("terminate", r.s.terminate)
     r.get_all("terminated")
     r.call("reset", r.s.reset)
@@ -218,7 +218,7 @@ def states(build, foreign=None):
     st = r.call("getFMUstate", r.s.getFMUstate)
     data = bytes(r.call("serializeFMUstate", r.s.serializeFMUstate, st))
     rec.append(("serialized", len(data), hashlib.sha256(data).hexdigest()))
-    t1 = drive(r, 10, 8, t)
+    drive(r, 10, 8, t)
     r.call("setFMUstate", r.s.setFMUstate, st)
     drive(r, 10, 8, t)
     r.call("freeFMUstate", r.s.freeFMUstate, st)
@@ -234,7 +234,6 @@ def states(build, foreign=None):
                           r2.call("getFMUstate", r2.s.getFMUstate)))
     rec.append(("re-serialized", len(again), hashlib.sha256(again).hexdigest()))
     r2.free()
-    del t1
     return rec, data
 
 
