@@ -11,9 +11,10 @@
 #![allow(non_snake_case)]
 #![allow(clippy::missing_safety_doc)]
 
-use crate::instance::{Instance, LogMsg, Phase, Snapshot, Status, Value};
+use crate::instance::{Instance, LogMsg, Phase, Snapshot, Status};
 use crate::model_description::{guid, MODEL_IDENTIFIER};
 use crate::state;
+use crate::vars::Value;
 use fmi_sys::fmi2 as f;
 use std::collections::BTreeMap;
 use std::ffi::{c_char, CStr, CString};
@@ -386,7 +387,7 @@ pub unsafe extern "C" fn fmi2Reset(c: f::fmi2Component) -> S {
 // Getting and setting values
 
 macro_rules! getter {
-    ($fname:ident, $name:literal, $t:ty, $method:ident, $conv:expr) => {
+    ($fname:ident, $t:ty, $method:ident, $conv:expr) => {
         #[no_mangle]
         pub unsafe extern "C" fn $fname(
             c: f::fmi2Component,
@@ -394,10 +395,11 @@ macro_rules! getter {
             nvr: usize,
             value: *mut $t,
         ) -> S {
+            const F: &str = stringify!($fname);
             unsafe {
-                with(c, $name, |comp| {
+                with(c, F, |comp| {
                     let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
-                        return null_arg(&mut comp.inst, $name, "vr or value");
+                        return null_arg(&mut comp.inst, F, "vr or value");
                     };
                     for (r, o) in vrs.iter().zip(out.iter_mut()) {
                         match comp.inst.$method(*r) {
@@ -413,7 +415,7 @@ macro_rules! getter {
 }
 
 macro_rules! setter {
-    ($fname:ident, $name:literal, $t:ty, $conv:expr) => {
+    ($fname:ident, $t:ty, $conv:expr) => {
         #[no_mangle]
         pub unsafe extern "C" fn $fname(
             c: f::fmi2Component,
@@ -421,57 +423,33 @@ macro_rules! setter {
             nvr: usize,
             value: *const $t,
         ) -> S {
+            const F: &str = stringify!($fname);
             unsafe {
-                with(c, $name, |comp| {
+                with(c, F, |comp| {
                     let (Some(vrs), Some(vals)) = (slice(vr, nvr), slice(value, nvr)) else {
-                        return null_arg(&mut comp.inst, $name, "vr or value");
+                        return null_arg(&mut comp.inst, F, "vr or value");
                     };
                     let items: Vec<(u32, Value)> = vrs
                         .iter()
                         .zip(vals.iter())
                         .map(|(r, x)| (*r, $conv(*x)))
                         .collect();
-                    comp.inst.set_values($name, &items)
+                    comp.inst.set_values(F, &items)
                 })
             }
         }
     };
 }
 
-getter!(
-    fmi2GetReal,
-    "fmi2GetReal",
-    f::fmi2Real,
-    get_real,
-    |x: f64| x
-);
-getter!(
-    fmi2GetInteger,
-    "fmi2GetInteger",
-    f::fmi2Integer,
-    get_integer,
-    |x: i32| x
-);
-getter!(
-    fmi2GetBoolean,
-    "fmi2GetBoolean",
-    f::fmi2Boolean,
-    get_boolean,
-    |x: bool| x as f::fmi2Boolean
-);
-setter!(fmi2SetReal, "fmi2SetReal", f::fmi2Real, Value::Real);
-setter!(
-    fmi2SetInteger,
-    "fmi2SetInteger",
-    f::fmi2Integer,
-    Value::Integer
-);
-setter!(
-    fmi2SetBoolean,
-    "fmi2SetBoolean",
-    f::fmi2Boolean,
-    |x: f::fmi2Boolean| Value::Boolean(x != 0)
-);
+getter!(fmi2GetReal, f::fmi2Real, get_real, |x: f64| x);
+getter!(fmi2GetInteger, f::fmi2Integer, get_integer, |x: i32| x);
+getter!(fmi2GetBoolean, f::fmi2Boolean, get_boolean, |x: bool| x
+    as f::fmi2Boolean);
+setter!(fmi2SetReal, f::fmi2Real, Value::Real);
+setter!(fmi2SetInteger, f::fmi2Integer, Value::Integer);
+setter!(fmi2SetBoolean, f::fmi2Boolean, |x: f::fmi2Boolean| {
+    Value::Boolean(x != 0)
+});
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetString(
@@ -845,174 +823,57 @@ fn unsupported(comp: &mut Component, func: &str, why: &str) -> Status {
     ))
 }
 
+/// Exports each unsupported function (its arguments after the instance, and why it is not
+/// supported): it returns fmi2Error with a message.
+macro_rules! unsupported {
+    ($($name:ident($($arg:ident: $ty:ty),*) => $why:expr;)*) => {
+        $(
+            #[no_mangle]
+            pub unsafe extern "C" fn $name(c: f::fmi2Component, $($arg: $ty),*) -> S {
+                const F: &str = stringify!($name);
+                unsafe { with(c, F, |comp| unsupported(comp, F, $why)) }
+            }
+        )*
+    };
+}
+
 const ME: &str = "the FMU is Co-Simulation only";
 
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
-    c: f::fmi2Component,
-    _vUnknown_ref: *const f::fmi2ValueReference,
-    _nUnknown: usize,
-    _vKnown_ref: *const f::fmi2ValueReference,
-    _nKnown: usize,
-    _dvKnown: *const f::fmi2Real,
-    _dvUnknown: *mut f::fmi2Real,
-) -> S {
-    const F: &str = "fmi2GetDirectionalDerivative";
-    unsafe {
-        with(c, F, |comp| {
-            unsupported(comp, F, "providesDirectionalDerivative = false")
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
-    c: f::fmi2Component,
-    _vr: *const f::fmi2ValueReference,
-    _nvr: usize,
-    _order: *const f::fmi2Integer,
-    _value: *const f::fmi2Real,
-) -> S {
-    const F: &str = "fmi2SetRealInputDerivatives";
-    unsafe {
-        with(c, F, |comp| {
-            unsupported(comp, F, "canInterpolateInputs = false")
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
-    c: f::fmi2Component,
-    _vr: *const f::fmi2ValueReference,
-    _nvr: usize,
-    _order: *const f::fmi2Integer,
-    _value: *mut f::fmi2Real,
-) -> S {
-    const F: &str = "fmi2GetRealOutputDerivatives";
-    unsafe {
-        with(c, F, |comp| {
-            unsupported(comp, F, "maxOutputDerivativeOrder = 0")
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2EnterEventMode(c: f::fmi2Component) -> S {
-    unsafe {
-        with(c, "fmi2EnterEventMode", |comp| {
-            unsupported(comp, "fmi2EnterEventMode", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2NewDiscreteStates(
-    c: f::fmi2Component,
-    _info: *mut f::fmi2EventInfo,
-) -> S {
-    unsafe {
-        with(c, "fmi2NewDiscreteStates", |comp| {
-            unsupported(comp, "fmi2NewDiscreteStates", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(c: f::fmi2Component) -> S {
-    unsafe {
-        with(c, "fmi2EnterContinuousTimeMode", |comp| {
-            unsupported(comp, "fmi2EnterContinuousTimeMode", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
-    c: f::fmi2Component,
-    _noSetFMUStatePriorToCurrentPoint: f::fmi2Boolean,
-    _enterEventMode: *mut f::fmi2Boolean,
-    _terminateSimulation: *mut f::fmi2Boolean,
-) -> S {
-    unsafe {
-        with(c, "fmi2CompletedIntegratorStep", |comp| {
-            unsupported(comp, "fmi2CompletedIntegratorStep", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetTime(c: f::fmi2Component, _time: f::fmi2Real) -> S {
-    unsafe {
-        with(c, "fmi2SetTime", |comp| {
-            unsupported(comp, "fmi2SetTime", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetContinuousStates(
-    c: f::fmi2Component,
-    _x: *const f::fmi2Real,
-    _nx: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2SetContinuousStates", |comp| {
-            unsupported(comp, "fmi2SetContinuousStates", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetDerivatives(
-    c: f::fmi2Component,
-    _derivatives: *mut f::fmi2Real,
-    _nx: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2GetDerivatives", |comp| {
-            unsupported(comp, "fmi2GetDerivatives", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetEventIndicators(
-    c: f::fmi2Component,
-    _eventIndicators: *mut f::fmi2Real,
-    _ni: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2GetEventIndicators", |comp| {
-            unsupported(comp, "fmi2GetEventIndicators", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetContinuousStates(
-    c: f::fmi2Component,
-    _x: *mut f::fmi2Real,
-    _nx: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2GetContinuousStates", |comp| {
-            unsupported(comp, "fmi2GetContinuousStates", ME)
-        })
-    }
-}
-
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
-    c: f::fmi2Component,
-    _x_nominal: *mut f::fmi2Real,
-    _nx: usize,
-) -> S {
-    unsafe {
-        with(c, "fmi2GetNominalsOfContinuousStates", |comp| {
-            unsupported(comp, "fmi2GetNominalsOfContinuousStates", ME)
-        })
-    }
+unsupported! {
+    fmi2GetDirectionalDerivative(
+        _vUnknown_ref: *const f::fmi2ValueReference,
+        _nUnknown: usize,
+        _vKnown_ref: *const f::fmi2ValueReference,
+        _nKnown: usize,
+        _dvKnown: *const f::fmi2Real,
+        _dvUnknown: *mut f::fmi2Real
+    ) => "providesDirectionalDerivative = false";
+    fmi2SetRealInputDerivatives(
+        _vr: *const f::fmi2ValueReference,
+        _nvr: usize,
+        _order: *const f::fmi2Integer,
+        _value: *const f::fmi2Real
+    ) => "canInterpolateInputs = false";
+    fmi2GetRealOutputDerivatives(
+        _vr: *const f::fmi2ValueReference,
+        _nvr: usize,
+        _order: *const f::fmi2Integer,
+        _value: *mut f::fmi2Real
+    ) => "maxOutputDerivativeOrder = 0";
+    fmi2EnterEventMode() => ME;
+    fmi2NewDiscreteStates(_info: *mut f::fmi2EventInfo) => ME;
+    fmi2EnterContinuousTimeMode() => ME;
+    fmi2CompletedIntegratorStep(
+        _noSetFMUStatePriorToCurrentPoint: f::fmi2Boolean,
+        _enterEventMode: *mut f::fmi2Boolean,
+        _terminateSimulation: *mut f::fmi2Boolean
+    ) => ME;
+    fmi2SetTime(_time: f::fmi2Real) => ME;
+    fmi2SetContinuousStates(_x: *const f::fmi2Real, _nx: usize) => ME;
+    fmi2GetDerivatives(_derivatives: *mut f::fmi2Real, _nx: usize) => ME;
+    fmi2GetEventIndicators(_eventIndicators: *mut f::fmi2Real, _ni: usize) => ME;
+    fmi2GetContinuousStates(_x: *mut f::fmi2Real, _nx: usize) => ME;
+    fmi2GetNominalsOfContinuousStates(_x_nominal: *mut f::fmi2Real, _nx: usize) => ME;
 }
 
 // ---------------------------------------------------------------------------------------

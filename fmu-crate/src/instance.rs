@@ -1,10 +1,11 @@
-//! One FMU instance as a safe state machine: settings, inputs, the core model, FMI call rules, and messages for the logger.
+//! One FMU instance as a safe FMI state machine: the call rules (one table, [`Call::allowed_in`]), the inputs, the core model and messages for the logger; the contact settings live in [`crate::settings`].
 
-use crate::vars::{self, Causality, Geo, In, Kind, Slot, Start, Var, N_AUX, N_INPUTS};
-use creep_core::effects::{self, Effect};
-use creep_core::params::{self, P};
-use creep_core::{Config, Geometry, Grid, Inputs, Model, ModelKind, Outputs};
-use std::collections::{BTreeMap, HashMap, HashSet};
+use crate::settings::{extras_for, Settings};
+use crate::vars::{
+    self, core_inputs, Causality, Geo, In, Kind, Out, Slot, Start, Value, Var, N_INPUTS,
+};
+use creep_core::{Config, Model, Outputs};
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 /// FMI status of a call.
@@ -47,6 +48,66 @@ impl Phase {
     }
 }
 
+/// A call whose phase the instance checks (a row of [`Call::allowed_in`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Call {
+    /// fmi2SetupExperiment.
+    SetupExperiment,
+    /// fmi2EnterInitializationMode.
+    EnterInitializationMode,
+    /// fmi2ExitInitializationMode.
+    ExitInitializationMode,
+    /// fmi2DoStep.
+    DoStep,
+    /// fmi2Terminate.
+    Terminate,
+    /// fmi2GetReal, fmi2GetInteger, fmi2GetBoolean, fmi2GetString.
+    Get,
+    /// fmi2Set* of an input.
+    SetInput,
+    /// fmi2Set* of a (fixed) parameter.
+    SetParameter,
+    /// fmi2Set* of an output.
+    SetOutput,
+    /// fmi2GetFMUstate.
+    GetFMUstate,
+    /// fmi2SetFMUstate with a state taken before initialization (it holds no model).
+    SetFMUstateUninitialized,
+}
+
+impl Call {
+    /// The FMI 2.0 Co-Simulation call rules, one table (like `MASK_fmi2*` in the Reference
+    /// FMUs' src/fmi2Functions.c): the phases in which each call is allowed, in [`Phase`]
+    /// order. Calls not listed (fmi2Reset, fmi2FreeInstance, fmi2SetDebugLogging,
+    /// fmi2SetFMUstate of an initialized state, the FMU state and status functions) are
+    /// allowed in every phase.
+    pub const fn allowed_in(self) -> &'static [Phase] {
+        use Phase::*;
+        match self {
+            Call::SetupExperiment => &[Instantiated],
+            Call::EnterInitializationMode => &[Instantiated],
+            Call::ExitInitializationMode => &[Initialization],
+            Call::DoStep => &[StepComplete],
+            Call::Terminate => &[StepComplete],
+            Call::Get => &[Initialization, StepComplete, Terminated, Error],
+            Call::SetInput => &[Instantiated, Initialization, StepComplete],
+            Call::SetParameter => &[Instantiated, Initialization],
+            Call::SetOutput => &[],
+            Call::GetFMUstate => &[Instantiated, Initialization, StepComplete, Terminated],
+            Call::SetFMUstateUninitialized => &[Instantiated, Initialization, Error],
+        }
+    }
+
+    /// The call of a set of a variable of this causality.
+    pub fn set(c: Causality) -> Call {
+        match c {
+            Causality::Input => Call::SetInput,
+            Causality::Parameter => Call::SetParameter,
+            Causality::Output => Call::SetOutput,
+        }
+    }
+}
+
 /// A message for the importer's logger.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LogMsg {
@@ -56,180 +117,6 @@ pub struct LogMsg {
     pub category: &'static str,
     /// The message, already formatted.
     pub text: String,
-}
-
-/// Largest configuration file accepted, bytes.
-pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
-
-/// Reads a configuration file: a regular file (after following links) of at most
-/// [`MAX_CONFIG_BYTES`]; anything else (FIFO, device, directory, socket) is refused without
-/// reading from it, so it can neither block nor exhaust memory.
-pub fn read_config(path: &Path) -> Result<Config, String> {
-    use std::io::Read;
-    let shown = path.display();
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read '{shown}': {e}"))?;
-    if !meta.is_file() {
-        return Err(format!(
-            "'{shown}' is not a regular file (a directory, FIFO, device or socket); give a JSON file"
-        ));
-    }
-    if meta.len() > MAX_CONFIG_BYTES {
-        return Err(format!(
-            "'{shown}' has {} bytes; a configuration file may have at most {MAX_CONFIG_BYTES} bytes (1 MiB)",
-            meta.len()
-        ));
-    }
-    let f = std::fs::File::open(path).map_err(|e| format!("cannot read '{shown}': {e}"))?;
-    let mut text = String::new();
-    // the limit holds even if the file grows between the check and the read
-    f.take(MAX_CONFIG_BYTES + 1)
-        .read_to_string(&mut text)
-        .map_err(|e| format!("cannot read '{shown}': {e}"))?;
-    if text.len() as u64 > MAX_CONFIG_BYTES {
-        return Err(format!(
-            "'{shown}' grew beyond {MAX_CONFIG_BYTES} bytes while it was read"
-        ));
-    }
-    Config::from_json_str(&text, &shown.to_string()).map_err(|e| e.to_string())
-}
-
-/// Where a data column's value comes from.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ColumnSource {
-    /// Auxiliary input (0-based: aux1 = 0).
-    Aux(usize),
-    /// A constant.
-    Const(f64),
-}
-
-/// Parses the `columns` parameter: `NAME=auxK` or `NAME=VALUE`, comma or semicolon separated.
-pub fn parse_columns(text: &str) -> Result<Vec<(String, ColumnSource)>, String> {
-    let mut out: Vec<(String, ColumnSource)> = Vec::new();
-    for item in text.split([',', ';']) {
-        let item = item.trim();
-        if item.is_empty() {
-            continue;
-        }
-        let Some((name, src)) = item.split_once('=') else {
-            return Err(format!("'{item}': expected NAME=auxK or NAME=VALUE"));
-        };
-        let (name, src) = (name.trim(), src.trim());
-        if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_') {
-            return Err(format!(
-                "'{item}': the column name must be letters, digits or '_'"
-            ));
-        }
-        if out.iter().any(|(n, _)| n == name) {
-            return Err(format!("column '{name}' is mapped twice"));
-        }
-        let source = if let Some(k) = src.strip_prefix("aux") {
-            match k.parse::<usize>() {
-                Ok(k) if (1..=N_AUX).contains(&k) => ColumnSource::Aux(k - 1),
-                _ => {
-                    return Err(format!(
-                        "'{item}': there are the auxiliary inputs aux1 ... aux{N_AUX}"
-                    ))
-                }
-            }
-        } else {
-            match src.parse::<f64>() {
-                Ok(x) if x.is_finite() => ColumnSource::Const(x),
-                _ => {
-                    return Err(format!(
-                        "'{item}': '{src}' is neither an auxiliary input (aux1 ... aux{N_AUX}) nor a finite number"
-                    ))
-                }
-            }
-        };
-        out.push((name.to_string(), source));
-    }
-    Ok(out)
-}
-
-/// The data columns a configuration's formula and custom effects read.
-pub fn columns_used(cfg: &Config) -> Vec<String> {
-    let mut v: Vec<String> = Vec::new();
-    let names = cfg
-        .formulas
-        .iter()
-        .flat_map(|f| f.columns.iter().cloned())
-        .chain(
-            cfg.custom
-                .iter()
-                .flat_map(|c| c.effect.columns().iter().map(|s| s.to_string())),
-        );
-    for n in names {
-        if !v.contains(&n) {
-            v.push(n);
-        }
-    }
-    v
-}
-
-/// A value of an fmi2Set* call.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Value {
-    /// fmi2Real.
-    Real(f64),
-    /// fmi2Integer.
-    Integer(i32),
-    /// fmi2Boolean.
-    Boolean(bool),
-    /// fmi2String.
-    String(String),
-}
-
-impl Value {
-    /// Base type of the value.
-    pub fn kind(&self) -> Kind {
-        match self {
-            Value::Real(_) => Kind::Real,
-            Value::Integer(_) => Kind::Integer,
-            Value::Boolean(_) => Kind::Boolean,
-            Value::String(_) => Kind::String,
-        }
-    }
-
-    fn show(&self) -> String {
-        match self {
-            Value::Real(x) => x.to_string(),
-            Value::Integer(x) => x.to_string(),
-            Value::Boolean(x) => x.to_string(),
-            Value::String(x) => format!("'{x}'"),
-        }
-    }
-}
-
-/// Parameter settings as the importer gave them; everything not given comes from the
-/// preset or configuration file.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Settings {
-    /// Model family name.
-    pub model: String,
-    /// True once `model` was set by the importer.
-    pub model_set: bool,
-    /// Preset name ("" = the model's default).
-    pub preset: String,
-    /// Configuration file ("" = none).
-    pub config_file: String,
-    /// Data columns of formula/custom effects ("" = none), see [`parse_columns`].
-    pub columns: String,
-    /// Parameters set by the importer (display units).
-    pub params: BTreeMap<P, f64>,
-    /// Effect switches set by the importer.
-    pub effects: BTreeMap<Effect, bool>,
-    /// Grid cells per strip, if set.
-    pub nx: Option<usize>,
-    /// Grid strips, if set.
-    pub ny: Option<usize>,
-    /// Threads that advance the strips (0 or 1: the calling thread).
-    pub threads: usize,
-    /// How a step advances the bristles: 0 cell by cell, 1 continuous.
-    pub scheme: i32,
-    /// Geometry mode: 0 configuration, 1 semi-axes, 2 curvatures.
-    pub geometry: i32,
-    /// Geometry values set by the importer (a_ref, b_ref, FN_ref, Rx, Ry), SI.
-    pub geo: [Option<f64>; 5],
 }
 
 /// Everything an FMU state holds: settings, inputs, time and the whole core model
@@ -250,53 +137,11 @@ pub struct Snapshot {
 
 /// The first non-finite output, as `name = value`.
 fn non_finite(o: &Outputs) -> Option<String> {
-    const NAMES: [&str; 13] = [
-        "Fx",
-        "Fy",
-        "Mz",
-        "f",
-        "T_max",
-        "T_mean",
-        "P_fric",
-        "frac_elastic",
-        "frac_plastic",
-        "frac_sliding",
-        "a",
-        "b",
-        "p0",
-    ];
-    let a = o.to_array();
-    a.iter()
-        .position(|x| !x.is_finite())
-        .map(|i| format!("{} = {}", NAMES[i], a[i]))
-}
-
-/// The data column values of a configuration with formula or custom effects (None
-/// without them): each column it reads, from its auxiliary input or constant.
-pub fn extras_for(
-    cfg: &Config,
-    columns: &str,
-    inputs: &[f64; N_INPUTS],
-) -> Result<Option<Vec<(String, f64)>>, String> {
-    if cfg.formulas.is_empty() && cfg.custom.is_empty() {
-        return Ok(None);
-    }
-    let map = parse_columns(columns)?;
-    let mut out = Vec::new();
-    for name in columns_used(cfg) {
-        let Some((_, src)) = map.iter().find(|(n, _)| *n == name) else {
-            return Err(format!(
-                "the configuration's formula or custom effects read the data column '{name}', which the parameter columns does not map (columns = '{}'); set e.g. columns = \"{name}=aux1\" and feed the input aux1, or columns = \"{name}=50\" for a constant",
-                columns
-            ));
-        };
-        let x = match *src {
-            ColumnSource::Aux(k) => inputs[6 + k],
-            ColumnSource::Const(x) => x,
-        };
-        out.push((name, x));
-    }
-    Ok(Some(out))
+    Out::ALL
+        .iter()
+        .map(|k| (k.name(), k.of(o)))
+        .find(|(_, x)| !x.is_finite())
+        .map(|(n, x)| format!("{n} = {x}"))
 }
 
 /// Checks a snapshot like the inputs and parameters of set calls: a deserialized state with
@@ -305,45 +150,16 @@ pub fn validate_snapshot(s: &Snapshot) -> Result<(), String> {
     if !s.time.is_finite() {
         return Err(format!("time = {} s is not finite", s.time));
     }
-    for (i, x) in s.inputs.iter().enumerate() {
+    for i in In::ALL {
+        let x = s.inputs[i.index()];
         if !x.is_finite() {
-            return Err(format!(
-                "input {} = {x} is not finite",
-                vars::INPUT_NAMES[i]
-            ));
+            return Err(format!("input {} = {x} is not finite", i.name()));
         }
     }
     core_inputs(&s.inputs)
         .validate()
         .map_err(|e| format!("inputs: {e}"))?;
-    let st = &s.settings;
-    let mut scratch = params::Params::default();
-    for (p, x) in &st.params {
-        scratch
-            .set(*p, *x)
-            .map_err(|e| format!("parameters: {e}"))?;
-    }
-    if !(0..=2).contains(&st.geometry) {
-        return Err(format!("geometry = {} (must be 0, 1 or 2)", st.geometry));
-    }
-    for (i, g) in st.geo.iter().enumerate() {
-        if let Some(x) = g {
-            if !(x.is_finite() && *x > 0.0) {
-                return Err(format!("geometry value {i} = {x} (must be finite and > 0)"));
-            }
-        }
-    }
-    let grid_ok = |n: Option<usize>, lo: usize, hi: usize| n.is_none_or(|n| (lo..=hi).contains(&n));
-    if !grid_ok(st.nx, 2, 2000) || !grid_ok(st.ny, 1, 1000) {
-        return Err(format!("grid {:?} x {:?} out of range", st.nx, st.ny));
-    }
-    if !st.model.is_empty() {
-        ModelKind::parse(&st.model).map_err(|e| format!("model: {e}"))?;
-    }
-    parse_columns(&st.columns).map_err(|e| format!("columns: {e}"))?;
-    if !st.preset.is_empty() {
-        Config::preset(&st.preset).map_err(|e| format!("preset: {e}"))?;
-    }
+    s.settings.validate()?;
     if let Some(m) = &s.model {
         if !m.time().is_finite() {
             return Err(format!("model time = {} s is not finite", m.time()));
@@ -374,41 +190,6 @@ pub struct Instance {
     logs: Vec<LogMsg>,
     log_events: bool,
     seen: HashSet<String>,
-}
-
-fn geo_index(g: Geo) -> usize {
-    match g {
-        Geo::ARef => 0,
-        Geo::BRef => 1,
-        Geo::FnRef => 2,
-        Geo::Rx => 3,
-        Geo::Ry => 4,
-    }
-}
-
-fn input_index(i: In) -> usize {
-    match i {
-        In::Cx => 0,
-        In::Cy => 1,
-        In::Spin => 2,
-        In::V => 3,
-        In::Fn => 4,
-        In::TBulk => 5,
-        In::Aux(k) => 6 + k,
-    }
-}
-
-/// The core inputs of FMU input values (FN <= 0 is lift-off: F_N = 0).
-pub fn core_inputs(x: &[f64; N_INPUTS]) -> Inputs {
-    Inputs {
-        cx: x[0],
-        cy: x[1],
-        spin: x[2],
-        v: x[3],
-        // NaN stays NaN so that validation rejects it
-        fn_n: if x[4] < 0.0 { 0.0 } else { x[4] },
-        t_bulk: x[5],
-    }
 }
 
 /// Turns a file URI (fmuResourceLocation) into a path: `file:///a/b%20c/` -> `/a/b c/`.
@@ -476,7 +257,7 @@ impl Instance {
         self.settings = Settings::default();
         for v in &self.table {
             if let (Slot::Input(i), Start::Real(x)) = (v.slot, &v.start) {
-                self.inputs[input_index(i)] = *x;
+                self.inputs[i.index()] = *x;
             }
         }
         self.phase = Phase::Instantiated;
@@ -571,11 +352,17 @@ impl Instance {
         st
     }
 
-    fn check_phase(&mut self, func: &str, allowed: &[Phase]) -> Result<(), Status> {
-        if allowed.contains(&self.phase) {
+    /// True if the call table allows `call` in the current phase.
+    fn allows(&self, call: Call) -> bool {
+        call.allowed_in().contains(&self.phase)
+    }
+
+    /// Checks `call` against the call table; logs the refusal.
+    fn check_phase(&mut self, func: &str, call: Call) -> Result<(), Status> {
+        if self.allows(call) {
             Ok(())
         } else {
-            let names: Vec<&str> = allowed.iter().map(|p| p.name()).collect();
+            let names: Vec<&str> = call.allowed_in().iter().map(|p| p.name()).collect();
             Err(self.error(format!(
                 "{func}: not allowed in state {} (allowed in: {})",
                 self.phase.name(),
@@ -586,7 +373,7 @@ impl Instance {
 
     /// fmi2SetupExperiment.
     pub fn setup_experiment(&mut self, start: f64) -> Status {
-        if let Err(s) = self.check_phase("fmi2SetupExperiment", &[Phase::Instantiated]) {
+        if let Err(s) = self.check_phase("fmi2SetupExperiment", Call::SetupExperiment) {
             return s;
         }
         if !start.is_finite() {
@@ -600,7 +387,9 @@ impl Instance {
 
     /// fmi2EnterInitializationMode.
     pub fn enter_initialization(&mut self) -> Status {
-        if let Err(s) = self.check_phase("fmi2EnterInitializationMode", &[Phase::Instantiated]) {
+        if let Err(s) =
+            self.check_phase("fmi2EnterInitializationMode", Call::EnterInitializationMode)
+        {
             return s;
         }
         self.phase = Phase::Initialization;
@@ -610,22 +399,17 @@ impl Instance {
     /// fmi2ExitInitializationMode: resolves the configuration, builds the model and sets
     /// its bristle grid to the steady state of the current inputs.
     pub fn exit_initialization(&mut self) -> Status {
-        if let Err(s) = self.check_phase("fmi2ExitInitializationMode", &[Phase::Initialization]) {
+        if let Err(s) = self.check_phase("fmi2ExitInitializationMode", Call::ExitInitializationMode)
+        {
             return s;
         }
         let mut st = Status::Ok;
-        if self.settings.geometry != 1 {
-            for (i, n) in ["a_ref", "b_ref", "FN_ref"].iter().enumerate() {
-                if self.settings.geo[i].is_some() {
-                    st = st.max(self.warn(format!("fmi2ExitInitializationMode: {n} was set but geometry = {} (not 1, semi-axes): {n} is ignored", self.settings.geometry)));
-                }
-            }
-        }
-        if self.settings.geometry != 2 {
-            for (i, n) in ["Rx", "Ry"].iter().enumerate() {
-                if self.settings.geo[3 + i].is_some() {
-                    st = st.max(self.warn(format!("fmi2ExitInitializationMode: {n} was set but geometry = {} (not 2, curvatures): {n} is ignored", self.settings.geometry)));
-                }
+        let mode = self.settings.geometry;
+        for g in Geo::ALL {
+            if g.mode() != mode && self.settings.geo[g.index()].is_some() {
+                let (n, m) = (g.name(), g.mode());
+                let what = if m == 1 { "semi-axes" } else { "curvatures" };
+                st = st.max(self.warn(format!("fmi2ExitInitializationMode: {n} was set but geometry = {mode} (not {m}, {what}): {n} is ignored")));
             }
         }
         if self.restored && self.model.is_some() {
@@ -650,7 +434,7 @@ impl Instance {
 
     /// fmi2Terminate.
     pub fn terminate(&mut self) -> Status {
-        if let Err(s) = self.check_phase("fmi2Terminate", &[Phase::StepComplete]) {
+        if let Err(s) = self.check_phase("fmi2Terminate", Call::Terminate) {
             return s;
         }
         self.phase = Phase::Terminated;
@@ -680,7 +464,7 @@ impl Instance {
 
     /// fmi2DoStep: advances the contact by `h` seconds with the inputs held constant.
     pub fn do_step(&mut self, t: f64, h: f64) -> Status {
-        if let Err(s) = self.check_phase("fmi2DoStep", &[Phase::StepComplete]) {
+        if let Err(s) = self.check_phase("fmi2DoStep", Call::DoStep) {
             return s;
         }
         if !(h.is_finite() && h >= 0.0) {
@@ -745,17 +529,7 @@ impl Instance {
     }
 
     fn check_settable(&mut self, func: &str, v: &Var) -> Result<(), Status> {
-        let ok = match v.causality {
-            Causality::Output => false,
-            Causality::Input => matches!(
-                self.phase,
-                Phase::Instantiated | Phase::Initialization | Phase::StepComplete
-            ),
-            Causality::Parameter => {
-                matches!(self.phase, Phase::Instantiated | Phase::Initialization)
-            }
-        };
-        if ok {
+        if self.allows(Call::set(v.causality)) {
             return Ok(());
         }
         let why = match v.causality {
@@ -773,15 +547,7 @@ impl Instance {
     }
 
     fn check_gettable(&mut self, func: &str) -> Result<(), Status> {
-        self.check_phase(
-            func,
-            &[
-                Phase::Initialization,
-                Phase::StepComplete,
-                Phase::Terminated,
-                Phase::Error,
-            ],
-        )
+        self.check_phase(func, Call::Get)
     }
 
     fn settings_changed(&mut self) {
@@ -793,140 +559,8 @@ impl Instance {
         }
     }
 
-    /// Path of a configuration file: absolute, or relative to the FMU's resources/.
-    pub fn config_path(&self, file: &str) -> Result<PathBuf, String> {
-        let p = Path::new(file);
-        if p.is_absolute() {
-            return Ok(p.to_path_buf());
-        }
-        match &self.resources {
-            Some(r) => Ok(r.join(p)),
-            None => Err(format!(
-                "config_file '{file}' is relative, but the importer gave no local fmuResourceLocation to resolve it against"
-            )),
-        }
-    }
-
-    fn base_config(&self) -> Result<Config, String> {
-        let s = &self.settings;
-        let check_model = |c: &Config, what: &str| -> Result<(), String> {
-            if s.model_set && c.model.name() != s.model {
-                let of_model: Vec<&str> = creep_core::config::PRESETS
-                    .iter()
-                    .filter(|(n, _)| {
-                        Config::preset(n)
-                            .map(|p| p.model.name() == s.model)
-                            .unwrap_or(false)
-                    })
-                    .map(|(n, _)| *n)
-                    .collect();
-                Err(format!(
-                    "model = '{}' but {what} is a '{}' configuration: leave model empty (it then follows the preset or file) or choose a configuration of model '{}' (presets: {})",
-                    s.model,
-                    c.model.name(),
-                    s.model,
-                    of_model.join(", ")
-                ))
-            } else {
-                Ok(())
-            }
-        };
-        if !s.config_file.is_empty() {
-            if !s.preset.is_empty() {
-                return Err(format!(
-                    "preset = '{}' and config_file = '{}' are both set; set one of them (a configuration file can name a preset itself)",
-                    s.preset, s.config_file
-                ));
-            }
-            let c = self
-                .read_config_file(&s.config_file)
-                .map_err(|e| format!("config_file: {e}"))?;
-            check_model(&c, &format!("config_file '{}'", s.config_file))?;
-            Ok(c)
-        } else if !s.preset.is_empty() {
-            let c = Config::preset(&s.preset).map_err(|e| format!("preset: {e}"))?;
-            check_model(&c, &format!("preset '{}'", s.preset))?;
-            Ok(c)
-        } else if s.model_set {
-            Config::for_model(&s.model).map_err(|e| format!("model: {e}"))
-        } else {
-            Config::for_model("ecf").map_err(|e| format!("model: {e}"))
-        }
-    }
-
-    /// Resolves the configuration: preset or file, then every parameter the importer set.
-    pub fn resolve(&self) -> Result<Config, String> {
-        let s = &self.settings;
-        let mut cfg = self.base_config()?;
-        for (p, x) in &s.params {
-            cfg.params.set(*p, *x).map_err(|e| e.to_string())?;
-        }
-        for (e, on) in &s.effects {
-            if *on {
-                cfg.effects.insert(*e);
-            } else {
-                cfg.effects.remove(*e);
-            }
-        }
-        let grid = Grid {
-            nx: s.nx.unwrap_or(cfg.grid.nx),
-            ny: s.ny.unwrap_or(cfg.grid.ny),
-        };
-        grid.validate().map_err(|e| e.to_string())?;
-        cfg.grid = grid;
-        let base_semi = match cfg.geometry {
-            Geometry::SemiAxes { a, b, fn_ref } => Some([a, b, fn_ref]),
-            _ => None,
-        };
-        let start = |i: usize| -> f64 {
-            match &self
-                .table
-                .iter()
-                .find(|v| v.slot == Slot::Geo(GEOS[i]))
-                .map(|v| v.start.clone())
-            {
-                Some(Start::Real(x)) => *x,
-                _ => 1.0,
-            }
-        };
-        match s.geometry {
-            1 => {
-                let g = |i: usize| {
-                    s.geo[i]
-                        .or(base_semi.map(|b| b[i]))
-                        .unwrap_or_else(|| start(i))
-                };
-                cfg.geometry = Geometry::SemiAxes {
-                    a: g(0),
-                    b: g(1),
-                    fn_ref: g(2),
-                };
-            }
-            2 => {
-                let (rx0, ry0) = match cfg.geometry {
-                    Geometry::Curvatures { rx, ry } => (rx, ry),
-                    _ => (start(3), start(4)),
-                };
-                cfg.geometry = Geometry::Curvatures {
-                    rx: s.geo[3].unwrap_or(rx0),
-                    ry: s.geo[4].unwrap_or(ry0),
-                };
-            }
-            _ => {}
-        }
-        if cfg.model == ModelKind::Fastsim && !cfg.effects.has(Effect::Coulomb) {
-            return Err("model fastsim needs effect_coulomb = true".into());
-        }
-        Ok(cfg)
-    }
-
     fn config(&mut self) -> Result<&Config, String> {
-        if self.cfg.is_none() {
-            self.cfg = Some(self.resolve()?);
-        }
-        self.cfg
-            .as_ref()
-            .ok_or_else(|| "no configuration".to_string())
+        cached_config(&mut self.cfg, &self.settings, self.resources.as_deref())
     }
 
     /// The outputs for the current inputs: after initialization those of the last step; in
@@ -981,48 +615,38 @@ impl Instance {
         extras_for(cfg, &self.settings.columns, &self.inputs)
     }
 
+    /// The value of a parameter: as set, or from the resolved configuration.
+    fn parameter(&mut self, func: &str, v: &Var) -> Result<Value, Status> {
+        let Instance {
+            settings,
+            cfg,
+            resources,
+            ..
+        } = self;
+        match settings.get(v, || cached_config(cfg, settings, resources.as_deref())) {
+            Some(Ok(x)) => Ok(x),
+            Some(Err(e)) => {
+                Err(self.error(format!("{func}: {}: configuration error: {e}", v.name)))
+            }
+            None => Err(self.error(format!("{func}: {} is not a parameter", v.name))),
+        }
+    }
+
     /// fmi2GetReal of one variable.
     pub fn get_real(&mut self, vr: u32) -> Result<f64, Status> {
         const F: &str = "fmi2GetReal";
         self.check_gettable(F)?;
         let v = self.var(F, vr, Kind::Real)?;
         match v.slot {
-            Slot::Input(i) => Ok(self.inputs[input_index(i)]),
+            Slot::Input(i) => Ok(self.inputs[i.index()]),
             Slot::Output(o) => match self.current_outputs() {
                 Ok(out) => Ok(o.of(&out)),
                 Err(e) => Err(self.error(format!("{F}: {} cannot be computed: {e}", v.name))),
             },
-            Slot::Param(p) => {
-                if let Some(x) = self.settings.params.get(&p) {
-                    return Ok(*x);
-                }
-                match self.config() {
-                    Ok(c) => Ok(c.params.get(p)),
-                    Err(e) => Err(self.error(format!("{F}: {}: configuration error: {e}", v.name))),
-                }
-            }
-            Slot::Geo(g) => {
-                let i = geo_index(g);
-                if let Some(x) = self.settings.geo[i] {
-                    return Ok(x);
-                }
-                let start = match v.start {
-                    Start::Real(x) => x,
-                    _ => 0.0,
-                };
-                match self.config() {
-                    Ok(c) => Ok(match (c.geometry, g) {
-                        (Geometry::SemiAxes { a, .. }, Geo::ARef) => a,
-                        (Geometry::SemiAxes { b, .. }, Geo::BRef) => b,
-                        (Geometry::SemiAxes { fn_ref, .. }, Geo::FnRef) => fn_ref,
-                        (Geometry::Curvatures { rx, .. }, Geo::Rx) => rx,
-                        (Geometry::Curvatures { ry, .. }, Geo::Ry) => ry,
-                        _ => start,
-                    }),
-                    Err(e) => Err(self.error(format!("{F}: {}: configuration error: {e}", v.name))),
-                }
-            }
-            _ => Err(self.error(format!("{F}: {} is not a Real", v.name))),
+            _ => match self.parameter(F, &v)? {
+                Value::Real(x) => Ok(x),
+                _ => Err(self.error(format!("{F}: {} is not a Real", v.name))),
+            },
         }
     }
 
@@ -1031,22 +655,9 @@ impl Instance {
         const F: &str = "fmi2GetInteger";
         self.check_gettable(F)?;
         let v = self.var(F, vr, Kind::Integer)?;
-        if v.slot == Slot::GeometryMode {
-            return Ok(self.settings.geometry);
-        }
-        if v.slot == Slot::Threads {
-            return Ok(self.settings.threads.max(1) as i32);
-        }
-        if v.slot == Slot::Scheme {
-            return Ok(self.settings.scheme);
-        }
-        match self.config() {
-            Ok(c) => Ok(if v.slot == Slot::Nx {
-                c.grid.nx
-            } else {
-                c.grid.ny
-            } as i32),
-            Err(e) => Err(self.error(format!("{F}: {}: configuration error: {e}", v.name))),
+        match self.parameter(F, &v)? {
+            Value::Integer(x) => Ok(x),
+            _ => Err(self.error(format!("{F}: {} is not an Integer", v.name))),
         }
     }
 
@@ -1055,15 +666,9 @@ impl Instance {
         const F: &str = "fmi2GetBoolean";
         self.check_gettable(F)?;
         let v = self.var(F, vr, Kind::Boolean)?;
-        let Slot::Effect(e) = v.slot else {
-            return Err(self.error(format!("{F}: {} is not a Boolean", v.name)));
-        };
-        if let Some(on) = self.settings.effects.get(&e) {
-            return Ok(*on);
-        }
-        match self.config() {
-            Ok(c) => Ok(c.effects.has(e)),
-            Err(err) => Err(self.error(format!("{F}: {}: configuration error: {err}", v.name))),
+        match self.parameter(F, &v)? {
+            Value::Boolean(x) => Ok(x),
+            _ => Err(self.error(format!("{F}: {} is not a Boolean", v.name))),
         }
     }
 
@@ -1072,21 +677,10 @@ impl Instance {
         const F: &str = "fmi2GetString";
         self.check_gettable(F)?;
         let v = self.var(F, vr, Kind::String)?;
-        Ok(match v.slot {
-            Slot::Model => {
-                if self.settings.model_set {
-                    self.settings.model.clone()
-                } else {
-                    match self.config() {
-                        Ok(c) => c.model.name().to_string(),
-                        Err(_) => self.settings.model.clone(),
-                    }
-                }
-            }
-            Slot::Preset => self.settings.preset.clone(),
-            Slot::Columns => self.settings.columns.clone(),
-            _ => self.settings.config_file.clone(),
-        })
+        match self.parameter(F, &v)? {
+            Value::String(x) => Ok(x),
+            _ => Err(self.error(format!("{F}: {} is not a String", v.name))),
+        }
     }
 
     /// fmi2SetReal of one variable.
@@ -1154,76 +748,22 @@ impl Instance {
                     return refuse(self, "inputs must be finite".into());
                 }
                 let mut cand = self.inputs;
-                cand[input_index(i)] = *x;
+                cand[i.index()] = *x;
                 if let Err(e) = core_inputs(&cand).validate() {
                     return refuse(self, e.to_string());
                 }
             }
-            (Slot::Param(p), Value::Real(x)) => {
-                let mut scratch = creep_core::params::Params::default();
-                if let Err(e) = scratch.set(p, *x) {
-                    return refuse(self, e.to_string());
+            _ => match Settings::check(&v, x, self.resources.as_deref()) {
+                Some(Ok(())) => {}
+                Some(Err(why)) => return refuse(self, why),
+                None => {
+                    return Err(self.error(format!(
+                        "{func}: {} is not settable as {}",
+                        v.name,
+                        x.kind().name()
+                    )))
                 }
-            }
-            (Slot::Geo(_), Value::Real(x)) => {
-                if !(x.is_finite() && *x > 0.0) {
-                    let unit = v.unit.unwrap_or("");
-                    return refuse(self, format!("must be finite and > 0 {unit}"));
-                }
-            }
-            (
-                Slot::GeometryMode | Slot::Nx | Slot::Ny | Slot::Threads | Slot::Scheme,
-                Value::Integer(x),
-            ) => {
-                let (lo, hi) = (v.min.unwrap_or(0.0) as i32, v.max.unwrap_or(1e9) as i32);
-                if *x < lo || *x > hi {
-                    return refuse(
-                        self,
-                        format!("must be within [{lo}, {hi}] ({})", v.description),
-                    );
-                }
-                if v.slot == Slot::Nx && *x == 1 {
-                    return refuse(
-                        self,
-                        "a strip needs at least 2 cells: give 0 (from the preset) or 2 ... 2000"
-                            .into(),
-                    );
-                }
-            }
-            (Slot::Effect(_), Value::Boolean(_)) => {}
-            (Slot::Model, Value::String(x)) => {
-                if !x.is_empty() {
-                    if let Err(e) = ModelKind::parse(x) {
-                        return refuse(self, format!("{e}; or empty: the preset's model"));
-                    }
-                }
-            }
-            (Slot::Columns, Value::String(x)) => {
-                if let Err(e) = parse_columns(x) {
-                    return refuse(self, e);
-                }
-            }
-            (Slot::Preset, Value::String(x)) => {
-                if !x.is_empty() {
-                    if let Err(e) = Config::preset(x) {
-                        return refuse(self, e.to_string());
-                    }
-                }
-            }
-            (Slot::ConfigFile, Value::String(x)) => {
-                if !x.is_empty() {
-                    if let Err(e) = self.read_config_file(x) {
-                        return refuse(self, e);
-                    }
-                }
-            }
-            _ => {
-                return Err(self.error(format!(
-                    "{func}: {} is not settable as {}",
-                    v.name,
-                    x.kind().name()
-                )))
-            }
+            },
         }
         Ok(v)
     }
@@ -1233,7 +773,7 @@ impl Instance {
         match (v.slot, x) {
             (Slot::Input(i), Value::Real(x)) => {
                 let x = *x;
-                self.inputs[input_index(i)] = x;
+                self.inputs[i.index()] = x;
                 self.model_current = false;
                 return match i {
                     In::Cx | In::Cy if x.abs() > 1.0 => self.warn(format!(
@@ -1248,48 +788,14 @@ impl Instance {
                     _ => Status::Ok,
                 };
             }
-            // a value equal to the start value is 'not set' (an importer writes every start
-            // value; the preset's value must stay in force): see vars::UNSET
-            (Slot::Param(p), Value::Real(x)) => {
-                if v.start == Start::Real(*x) {
-                    self.settings.params.remove(&p);
-                } else {
-                    self.settings.params.insert(p, *x);
+            _ => {
+                if !self.settings.apply(v, x) {
+                    return self.error(format!("{func}: {} cannot be set", v.name));
                 }
             }
-            (Slot::Geo(g), Value::Real(x)) => {
-                self.settings.geo[geo_index(g)] = (v.start != Start::Real(*x)).then_some(*x)
-            }
-            (Slot::GeometryMode, Value::Integer(x)) => self.settings.geometry = *x,
-            (Slot::Nx, Value::Integer(x)) => self.settings.nx = (*x > 0).then_some(*x as usize),
-            (Slot::Ny, Value::Integer(x)) => self.settings.ny = (*x > 0).then_some(*x as usize),
-            (Slot::Threads, Value::Integer(x)) => self.settings.threads = (*x).max(1) as usize,
-            (Slot::Scheme, Value::Integer(x)) => self.settings.scheme = *x,
-            (Slot::Effect(e), Value::Boolean(x)) => {
-                if v.start == Start::Boolean(*x) {
-                    self.settings.effects.remove(&e);
-                } else {
-                    self.settings.effects.insert(e, *x);
-                }
-            }
-            (Slot::Model, Value::String(x)) => {
-                self.settings.model = x.clone();
-                self.settings.model_set = !x.is_empty();
-            }
-            (Slot::Columns, Value::String(x)) => self.settings.columns = x.clone(),
-            (Slot::Preset, Value::String(x)) => self.settings.preset = x.clone(),
-            (Slot::ConfigFile, Value::String(x)) => self.settings.config_file = x.clone(),
-            _ => return self.error(format!("{func}: {} cannot be set", v.name)),
         }
         self.settings_changed();
         Status::Ok
-    }
-
-    /// Reads and parses a configuration file: only a regular file of at most
-    /// [`MAX_CONFIG_BYTES`] (a FIFO, a device or a directory is refused before opening it).
-    pub fn read_config_file(&self, file: &str) -> Result<Config, String> {
-        let path = self.config_path(file)?;
-        read_config(&path)
     }
 
     /// fmi2GetRealStatus(fmi2LastSuccessfulTime).
@@ -1300,7 +806,7 @@ impl Instance {
     /// fmi2GetFMUstate: a copy of everything the instance holds (refused in the error
     /// state, whose outputs are not valid).
     pub fn try_get_state(&mut self) -> Result<Snapshot, Status> {
-        if self.phase == Phase::Error {
+        if !self.allows(Call::GetFMUstate) {
             return Err(self.error(
                 "fmi2GetFMUstate: the instance is in the error state; its state is not saved (fmi2Reset or fmi2SetFMUstate first)".into(),
             ));
@@ -1324,14 +830,10 @@ impl Instance {
         }
     }
 
-    /// fmi2SetFMUstate: restores a snapshot.
     /// Gives the model the importer's `threads` and `scheme` (settings of the instance, not
     /// of a state: they say how to compute, not what).
     fn apply_how_to_compute(&mut self) -> Result<(), String> {
-        let (n, scheme) = (
-            self.settings.threads.max(1),
-            scheme_of(self.settings.scheme),
-        );
+        let (n, scheme) = (self.settings.threads.max(1), self.settings.scheme());
         match self.model.as_mut() {
             Some(m) => {
                 m.set_scheme(scheme);
@@ -1341,6 +843,7 @@ impl Instance {
         }
     }
 
+    /// fmi2SetFMUstate: restores a snapshot.
     pub fn set_state(&mut self, s: &Snapshot) -> Status {
         const F: &str = "fmi2SetFMUstate";
         if let Err(e) = validate_snapshot(s) {
@@ -1348,7 +851,7 @@ impl Instance {
                 "{F}: the state is refused ({e}); the instance is unchanged"
             ));
         }
-        if s.model.is_none() && matches!(self.phase, Phase::StepComplete | Phase::Terminated) {
+        if s.model.is_none() && !self.allows(Call::SetFMUstateUninitialized) {
             return self.error(format!(
                 "{F}: the state was taken before initialization and cannot be set in state {}",
                 self.phase.name()
@@ -1358,7 +861,7 @@ impl Instance {
         let (threads, scheme) = (self.settings.threads, self.settings.scheme);
         let mut model = s.model.clone();
         if let Some(m) = model.as_mut() {
-            m.set_scheme(scheme_of(scheme));
+            m.set_scheme(self.settings.scheme());
             if let Err(e) = m.set_threads(threads.max(1)) {
                 return self.error(format!("{F}: {e}; the instance is unchanged"));
             }
@@ -1384,39 +887,24 @@ impl Instance {
     }
 }
 
-/// Geometry parameters in the order of `Settings::geo`.
-pub const GEOS: [Geo; 5] = [Geo::ARef, Geo::BRef, Geo::FnRef, Geo::Rx, Geo::Ry];
-
-/// Index of an effect in the catalogue (serialization).
-pub fn effect_index(e: Effect) -> u8 {
-    effects::CATALOGUE
-        .iter()
-        .position(|i| i.effect == e)
-        .unwrap_or(0) as u8
-}
-
-/// Effect of a catalogue index.
-pub fn effect_of(i: u8) -> Option<Effect> {
-    effects::CATALOGUE.get(i as usize).map(|i| i.effect)
-}
-
-/// The engine's scheme for the FMU parameter `scheme` (0 cells, 1 continuous).
-fn scheme_of(x: i32) -> creep_core::engine::Scheme {
-    if x == 1 {
-        creep_core::engine::Scheme::Continuous
-    } else {
-        creep_core::engine::Scheme::CellsMarch
+/// The configuration resolved from `settings`, computed once into `cache`.
+fn cached_config<'a>(
+    cache: &'a mut Option<Config>,
+    settings: &Settings,
+    resources: Option<&Path>,
+) -> Result<&'a Config, String> {
+    if cache.is_none() {
+        *cache = Some(settings.resolve(resources)?);
     }
-}
-
-/// Parameter of a registry index.
-pub fn param_of(i: u32) -> Option<P> {
-    params::SPECS.get(i as usize).map(|s| s.id)
+    cache.as_ref().ok_or_else(|| "no configuration".to_string())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use creep_core::effects::Effect;
+    use creep_core::params::P;
+    use creep_core::Geometry;
 
     fn vr(name: &str) -> u32 {
         vars::table()

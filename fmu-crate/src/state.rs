@@ -1,21 +1,21 @@
 //! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
 //!
-//! Layout (version 2): magic `ECFFMUST`, u32 version, f64 time, 10 × f64 inputs (cx, cy,
-//! spin, v, FN, T_bulk, aux1..aux4), settings (model, model_set, preset, config_file, columns,
+//! Layout (version 2): magic `ECFFMUST`, u32 version, f64 time, `N_INPUTS` × f64 inputs in
+//! the order of `vars::In::ALL` (cx, cy, spin, v, FN, T_bulk, aux1..aux4; the test
+//! `input_layout_of_version_2` pins it), settings (model, model_set, preset, config_file, columns,
 //! set parameters as (u32 registry index, f64),
 //! set effects as (u8 catalogue index, u8), nx, ny as u32 (0 = not set), i32 geometry,
-//! 5 × (u8 present, f64)), u8 + configuration (u8 model, u32 effect bits, u32 count + f64
+//! `N_GEO` = 5 × (u8 present, f64) in the order of `vars::Geo::ALL`), u8 + configuration (u8 model, u32 effect bits, u32 count + f64
 //! per parameter, u8 bound, u32 nx, u32 ny, u8 geometry kind + 3 × f64, preset name, u8 +
 //! (if formula or custom effects) the configuration as JSON and, per formula then custom
 //! effect, u32 count + f64 parameter values), u8 + u32 length +
 //! the bytes of `creep_core::Model::save_state` (the whole bristle grid and heat histories).
 //! Strings are u32 length + UTF-8. Nothing follows the last field.
 
-use crate::instance::{
-    effect_index, effect_of, extras_for, param_of, validate_snapshot, Settings, Snapshot,
-};
-use creep_core::effects::EffectSet;
-use creep_core::params::{self, Params};
+use crate::instance::{validate_snapshot, Snapshot};
+use crate::settings::{extras_for, Settings};
+use creep_core::effects::{self, Effect, EffectSet};
+use creep_core::params::{self, Params, P};
 use creep_core::{Bound, Config, Geometry, Grid, Model, ModelKind};
 
 /// Magic bytes at the start of a serialized FMU state.
@@ -97,6 +97,24 @@ impl<'a> R<'a> {
             b => Err(format!("bad boolean byte {b} at {}", self.p - 1)),
         }
     }
+}
+
+/// Index of an effect in the catalogue (serialization).
+fn effect_index(e: Effect) -> u8 {
+    effects::CATALOGUE
+        .iter()
+        .position(|i| i.effect == e)
+        .unwrap_or(0) as u8
+}
+
+/// Effect of a catalogue index.
+fn effect_of(i: u8) -> Option<Effect> {
+    effects::CATALOGUE.get(i as usize).map(|i| i.effect)
+}
+
+/// Parameter of a registry index.
+fn param_of(i: u32) -> Option<P> {
+    params::SPECS.get(i as usize).map(|s| s.id)
 }
 
 fn put_config(w: &mut W, c: &Config) {
@@ -386,6 +404,24 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
 mod tests {
     use super::*;
     use crate::instance::{Instance, Status};
+
+    #[test]
+    fn input_layout_of_version_2() {
+        // the serialized state stores the inputs and geometry values in declaration order;
+        // a change of these lists changes the format and needs a new VERSION
+        let inputs: Vec<String> = crate::vars::In::ALL.iter().map(|i| i.name()).collect();
+        assert_eq!(
+            inputs,
+            ["cx", "cy", "spin", "v", "FN", "T_bulk", "aux1", "aux2", "aux3", "aux4"],
+            "input layout of state format version {VERSION}"
+        );
+        let geo: Vec<&str> = crate::vars::Geo::ALL.iter().map(|g| g.name()).collect();
+        assert_eq!(
+            geo,
+            ["a_ref", "b_ref", "FN_ref", "Rx", "Ry"],
+            "geometry layout of state format version {VERSION}"
+        );
+    }
 
     #[test]
     fn round_trip_continues_bit_for_bit_and_corruption_is_refused() {

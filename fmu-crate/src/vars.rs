@@ -1,4 +1,21 @@
-//! The one table of FMU variables: name, value reference, type, causality, unit, start, description; drives get/set and the XML.
+//! The one table of FMU variables: name, value reference, type, causality, unit, start, description; drives get/set, the state layout and the XML.
+//!
+//! Each variable is declared once. The contact's inputs, outputs and geometry parameters
+//! are the lines of `contact_variables!` below (the list is the order of modelDescription.xml
+//! and of the serialized state); the material, friction and thermal parameters and the
+//! effect switches come from creep-core's registries (`params::SPECS`, `effects::CATALOGUE`);
+//! the remaining parameters (geometry, nx, ny, threads, scheme, model, preset, config_file,
+//! columns) are one [`Var`] each in [`table`].
+//!
+//! Adding a variable:
+//! * an output: one line in `outputs` (name, value reference, unit, the field of
+//!   `creep_core::Outputs`, description); get, XML and ModelStructure follow;
+//! * an input: one line in `inputs` (the field of `creep_core::Inputs`); get/set, validation,
+//!   the core inputs and the state layout follow. The serialized state then has one more
+//!   value: raise `state::VERSION` (the test `input_layout_of_version_2` says so);
+//! * a material parameter or an effect: its entry in creep-core's registry, nothing here;
+//! * another parameter: a [`Var`] in [`table`] with a new [`Slot`], and what it does in
+//!   `settings.rs` (check, apply, get, and its use in `Settings::resolve`).
 
 use creep_core::config::DEFAULT_GEOMETRY;
 use creep_core::effects::{self, Effect};
@@ -41,97 +58,278 @@ pub enum Causality {
     Output,
 }
 
-/// One of the inputs of a contact, in the order of [`INPUT_NAMES`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum In {
-    /// Longitudinal creepage.
-    Cx,
-    /// Lateral creepage.
-    Cy,
-    /// Spin creepage.
-    Spin,
-    /// Rolling speed.
-    V,
-    /// Normal force.
-    Fn,
-    /// Bulk temperature.
-    TBulk,
-    /// Auxiliary input 1..4 (index 0..3): a data column of formula or custom effects.
-    Aux(usize),
-}
-
-/// Number of auxiliary inputs.
-pub const N_AUX: usize = 4;
-/// Number of inputs (six contact inputs and the auxiliary inputs).
-pub const N_INPUTS: usize = 6 + N_AUX;
-/// Value reference of `aux1` (the others follow).
-pub const VR_AUX0: u32 = 90;
-
-/// One of the outputs of a contact.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Out {
-    /// Longitudinal creep force.
-    Fx,
-    /// Lateral creep force.
-    Fy,
-    /// Spin moment.
-    Mz,
-    /// Traction coefficient.
-    F,
-    /// Maximum temperature.
-    TMax,
-    /// Mean temperature.
-    TMean,
-    /// Frictional power.
-    PFric,
-    /// Elastic area fraction.
-    FracElastic,
-    /// Plastic area fraction.
-    FracPlastic,
-    /// Sliding area fraction.
-    FracSliding,
-    /// Semi-axis a.
-    A,
-    /// Semi-axis b.
-    B,
-    /// Peak pressure.
-    P0,
-}
-
-impl Out {
-    /// The value of this output in a core [`creep_core::Outputs`].
-    pub fn of(self, o: &creep_core::Outputs) -> f64 {
-        match self {
-            Out::Fx => o.fx,
-            Out::Fy => o.fy,
-            Out::Mz => o.mz,
-            Out::F => o.f,
-            Out::TMax => o.t_max,
-            Out::TMean => o.t_mean,
-            Out::PFric => o.p_fric,
-            Out::FracElastic => o.frac_elastic,
-            Out::FracPlastic => o.frac_plastic,
-            Out::FracSliding => o.frac_sliding,
-            Out::A => o.a,
-            Out::B => o.b,
-            Out::P0 => o.p0,
+/// Generates, from the one declaration of the contact's variables below, the enums [`In`],
+/// [`Out`] and [`Geo`] with each variable's name, value reference, unit and description, the
+/// input layout (the order of an instance's input values and of the serialized state), the
+/// mapping to the core's [`Inputs`] and [`creep_core::Outputs`], and their rows of [`table`].
+macro_rules! contact_variables {
+    (
+        inputs {
+            $( $(#[$in_doc:meta])* $in:ident = $in_vr:literal, $in_name:literal, $in_unit:expr, core $in_core:ident, $in_desc:literal; )*
         }
+        aux inputs $n_aux:literal from $aux_vr:literal;
+        outputs {
+            $( $(#[$out_doc:meta])* $out:ident = $out_vr:literal, $out_name:literal, $out_unit:expr, core $out_core:ident, $out_desc:literal; )*
+        }
+        geometry {
+            $( $(#[$geo_doc:meta])* $geo:ident = $geo_vr:literal, $geo_name:literal, $geo_unit:literal, mode $geo_mode:literal, start $geo_start:expr, $geo_desc:literal; )*
+        }
+    ) => {
+        /// One of the inputs of a contact; [`In::ALL`] is their order (the layout of the input
+        /// values of an instance and of the serialized state).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum In {
+            $( $(#[$in_doc])* $in, )*
+            /// Auxiliary input 1..[`N_AUX`] (index 0..): a data column of formula or custom effects.
+            Aux(usize),
+        }
+
+        #[derive(Clone, Copy)]
+        enum CoreIn {
+            $( $in, )*
+        }
+
+        /// Number of auxiliary inputs.
+        pub const N_AUX: usize = $n_aux;
+        /// Number of contact inputs (those of the core's [`Inputs`]); the auxiliary inputs follow.
+        pub const N_CORE_INPUTS: usize = [$(CoreIn::$in),*].len();
+        /// Number of inputs (the contact inputs and the auxiliary inputs).
+        pub const N_INPUTS: usize = N_CORE_INPUTS + N_AUX;
+        /// Value reference of `aux1` (the others follow).
+        pub const VR_AUX0: u32 = $aux_vr;
+
+        impl In {
+            /// Every input, in layout order.
+            pub const ALL: [In; N_INPUTS] = {
+                let core = [$(In::$in),*];
+                let mut all = [In::Aux(0); N_INPUTS];
+                let mut i = 0;
+                while i < N_INPUTS {
+                    all[i] = if i < N_CORE_INPUTS { core[i] } else { In::Aux(i - N_CORE_INPUTS) };
+                    i += 1;
+                }
+                all
+            };
+
+            /// Position in the input values (instance and serialized state).
+            pub const fn index(self) -> usize {
+                match self {
+                    $( In::$in => CoreIn::$in as usize, )*
+                    In::Aux(k) => N_CORE_INPUTS + k,
+                }
+            }
+
+            /// Name in modelDescription.xml.
+            pub fn name(self) -> String {
+                match self {
+                    $( In::$in => $in_name.to_string(), )*
+                    In::Aux(k) => format!("aux{}", k + 1),
+                }
+            }
+
+            fn var(self) -> Var {
+                let (vr, unit, start, description) = match self {
+                    $( In::$in => ($in_vr, $in_unit, Inputs::default().$in_core, $in_desc.to_string()), )*
+                    In::Aux(k) => (VR_AUX0 + k as u32, None, 0.0, aux_description(k)),
+                };
+                real(self.name(), vr, Causality::Input, unit, Start::Real(start), description, Slot::Input(self))
+            }
+        }
+
+        /// The core inputs of FMU input values, as they are (see [`core_inputs`]).
+        fn core_fields(x: &[f64; N_INPUTS]) -> Inputs {
+            Inputs { $( $in_core: x[In::$in.index()], )* }
+        }
+
+        /// One of the outputs of a contact.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum Out {
+            $( $(#[$out_doc])* $out, )*
+        }
+
+        impl Out {
+            /// Every output, in the order of the table.
+            pub const ALL: &'static [Out] = &[$(Out::$out),*];
+
+            /// The value of this output in a core [`creep_core::Outputs`].
+            pub fn of(self, o: &creep_core::Outputs) -> f64 {
+                match self {
+                    $( Out::$out => o.$out_core, )*
+                }
+            }
+
+            /// Name in modelDescription.xml.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $( Out::$out => $out_name, )*
+                }
+            }
+
+            fn var(self) -> Var {
+                let (vr, unit, description) = match self {
+                    $( Out::$out => ($out_vr, $out_unit, $out_desc), )*
+                };
+                real(self.name().into(), vr, Causality::Output, unit, Start::None, description.into(), Slot::Output(self))
+            }
+        }
+
+        /// Geometry parameters (SI); [`Geo::ALL`] is their order (of `Settings::geo` and of
+        /// the serialized state).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum Geo {
+            $( $(#[$geo_doc])* $geo, )*
+        }
+
+        /// Number of geometry parameters.
+        pub const N_GEO: usize = [$(Geo::$geo),*].len();
+
+        impl Geo {
+            /// Every geometry parameter, in layout order.
+            pub const ALL: [Geo; N_GEO] = [$(Geo::$geo),*];
+
+            /// Position in `Settings::geo`.
+            pub const fn index(self) -> usize {
+                self as usize
+            }
+
+            /// Name in modelDescription.xml.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $( Geo::$geo => $geo_name, )*
+                }
+            }
+
+            /// The value of the parameter `geometry` under which this parameter applies.
+            pub fn mode(self) -> i32 {
+                match self {
+                    $( Geo::$geo => $geo_mode, )*
+                }
+            }
+
+            /// Start value (a value equal to it means 'not set', see [`UNSET`]).
+            pub fn start(self) -> f64 {
+                match self {
+                    $( Geo::$geo => $geo_start, )*
+                }
+            }
+
+            fn var(self) -> Var {
+                let (vr, unit, description) = match self {
+                    $( Geo::$geo => ($geo_vr, $geo_unit, $geo_desc), )*
+                };
+                let mut v = real(self.name().into(), vr, Causality::Parameter, Some(unit), Start::Real(self.start()), format!("{description}; {UNSET}"), Slot::Geo(self));
+                v.min = Some(0.0);
+                v
+            }
+        }
+    };
+}
+
+// The contact's variables, each declared once (like config.h of the Reference FMUs): the
+// order here is the order of modelDescription.xml and of the serialized state; value
+// references are fixed. Start values of the inputs are those of `creep_core::Inputs::default`.
+contact_variables! {
+    inputs {
+        /// Longitudinal creepage.
+        Cx = 1, "cx", None, core cx, "longitudinal creepage c_x = v_x/|v| (slip velocity of the wheel against the rail along x, the rolling direction, over the rolling speed); > 0 traction (driven wheel turns faster than it rolls), < 0 braking; Fx (force on the wheel) has the sign of cx";
+        /// Lateral creepage.
+        Cy = 2, "cy", None, core cy, "lateral creepage c_y = v_y/|v| (lateral slip velocity of the wheel, y = z x x with z the contact normal into the wheel); Fy has its sign (Kalker's eta with the force on the wheel, i.e. Kalker's traction negated)";
+        /// Spin creepage.
+        Spin = 3, "spin", Some("1/m"), core spin, "spin creepage omega_z/|v| (relative rotation rate of the wheel about the contact normal z, into the wheel); spin > 0 gives Fy > 0 and Mz > 0 at small creepage";
+        /// Rolling speed.
+        V = 4, "v", Some("m/s"), core v, "rolling (vehicle) speed; < 0 rolls backwards (the mirror image; the bristles stay in the contact when the sign changes); 0 is standstill (no advection, no heat)";
+        /// Normal force.
+        Fn = 5, "FN", Some("N"), core fn_n, "normal force on the contact; <= 0 is lift-off (all forces zero)";
+        /// Bulk temperature.
+        TBulk = 6, "T_bulk", Some("degC"), core t_bulk, "bulk (ambient) temperature of wheel and rail";
+    }
+    aux inputs 4 from 90;
+    outputs {
+        /// Longitudinal creep force.
+        Fx = 10, "Fx", Some("N"), core fx, "longitudinal creep force on the wheel (positive with c_x: traction)";
+        /// Lateral creep force.
+        Fy = 11, "Fy", Some("N"), core fy, "lateral creep force (positive with c_y)";
+        /// Spin moment.
+        Mz = 12, "Mz", Some("N.m"), core mz, "spin moment about the contact normal, int (x tau_y - y tau_x) dA";
+        /// Traction coefficient.
+        F = 13, "f", None, core f, "traction coefficient Fx/FN (0 at lift-off)";
+        /// Maximum temperature.
+        TMax = 14, "T_max", Some("degC"), core t_max, "maximum flash temperature in the contact";
+        /// Mean temperature.
+        TMean = 15, "T_mean", Some("degC"), core t_mean, "area-weighted mean temperature in the contact";
+        /// Frictional power.
+        PFric = 16, "P_fric", Some("W"), core p_fric, "frictional power dissipated in the contact (both bodies)";
+        /// Elastic area fraction.
+        FracElastic = 17, "frac_elastic", None, core frac_elastic, "area fraction of elastic (adhering) bristles";
+        /// Plastic area fraction.
+        FracPlastic = 18, "frac_plastic", None, core frac_plastic, "area fraction of plastically hardening bristles";
+        /// Sliding area fraction.
+        FracSliding = 19, "frac_sliding", None, core frac_sliding, "area fraction of sliding bristles";
+        /// Semi-axis a.
+        A = 20, "a", Some("m"), core a, "contact semi-axis in rolling direction";
+        /// Semi-axis b.
+        B = 21, "b", Some("m"), core b, "lateral contact semi-axis (line contact: half width)";
+        /// Peak pressure.
+        P0 = 22, "p0", Some("Pa"), core p0, "maximum Hertz pressure";
+    }
+    geometry {
+        /// Semi-axis a at the reference load.
+        ARef = 30, "a_ref", "m", mode 1, start semi_axes_start()[0], "semi-axis in rolling direction at FN_ref (geometry = 1); scales with (FN/FN_ref)^(1/3)";
+        /// Semi-axis b at the reference load.
+        BRef = 31, "b_ref", "m", mode 1, start semi_axes_start()[1], "lateral semi-axis at FN_ref (geometry = 1)";
+        /// Reference load.
+        FnRef = 32, "FN_ref", "N", mode 1, start semi_axes_start()[2], "reference normal force of a_ref, b_ref (geometry = 1)";
+        /// Equivalent radius of curvature in rolling direction.
+        Rx = 33, "Rx", "m", mode 2, start RX_START, "equivalent radius of curvature in rolling direction, Hertz (geometry = 2)";
+        /// Equivalent lateral radius of curvature.
+        Ry = 34, "Ry", "m", mode 2, start RY_START, "equivalent lateral radius of curvature, Hertz (geometry = 2)";
     }
 }
 
-/// Geometry parameters (SI).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Geo {
-    /// Semi-axis a at the reference load.
-    ARef,
-    /// Semi-axis b at the reference load.
-    BRef,
-    /// Reference load.
-    FnRef,
-    /// Equivalent radius of curvature in rolling direction.
-    Rx,
-    /// Equivalent lateral radius of curvature.
-    Ry,
+/// The core inputs of FMU input values (FN <= 0 is lift-off: F_N = 0).
+pub fn core_inputs(x: &[f64; N_INPUTS]) -> Inputs {
+    let mut i = core_fields(x);
+    // NaN stays NaN so that validation rejects it
+    if i.fn_n < 0.0 {
+        i.fn_n = 0.0;
+    }
+    i
+}
+
+fn aux_description(k: usize) -> String {
+    format!("auxiliary input {}: the value of a data column used by formula or custom effects of the configuration, mapped by the parameter columns (e.g. columns = \"humidity=aux{}\"); unused otherwise", k + 1, k + 1)
+}
+
+/// Start values of a_ref, b_ref, FN_ref: the semi-axes of the default configuration.
+fn semi_axes_start() -> [f64; 3] {
+    match default_config().geometry {
+        Geometry::SemiAxes { a, b, fn_ref } => [a, b, fn_ref],
+        _ => [7.63e-3, 7.88e-3, 110e3],
+    }
+}
+
+/// A Real variable without bounds.
+fn real(
+    name: String,
+    vr: u32,
+    causality: Causality,
+    unit: Option<&'static str>,
+    start: Start,
+    description: String,
+    slot: Slot,
+) -> Var {
+    Var {
+        name,
+        vr,
+        kind: Kind::Real,
+        causality,
+        unit,
+        description,
+        start,
+        min: None,
+        max: None,
+        slot,
+    }
 }
 
 /// What a variable reads and writes inside an instance.
@@ -165,6 +363,41 @@ pub enum Slot {
     ConfigFile,
     /// Data columns of the configuration: which auxiliary input or constant feeds each.
     Columns,
+}
+
+/// A value of an fmi2Set* or fmi2Get* call.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// fmi2Real.
+    Real(f64),
+    /// fmi2Integer.
+    Integer(i32),
+    /// fmi2Boolean.
+    Boolean(bool),
+    /// fmi2String.
+    String(String),
+}
+
+impl Value {
+    /// Base type of the value.
+    pub fn kind(&self) -> Kind {
+        match self {
+            Value::Real(_) => Kind::Real,
+            Value::Integer(_) => Kind::Integer,
+            Value::Boolean(_) => Kind::Boolean,
+            Value::String(_) => Kind::String,
+        }
+    }
+
+    /// The value as it appears in messages.
+    pub fn show(&self) -> String {
+        match self {
+            Value::Real(x) => x.to_string(),
+            Value::Integer(x) => x.to_string(),
+            Value::Boolean(x) => x.to_string(),
+            Value::String(x) => format!("'{x}'"),
+        }
+    }
 }
 
 /// Start value of a variable.
@@ -206,11 +439,6 @@ pub struct Var {
     /// What the variable reads and writes.
     pub slot: Slot,
 }
-
-/// Names of the inputs, in the order of [`In`].
-pub const INPUT_NAMES: [&str; N_INPUTS] = [
-    "cx", "cy", "spin", "v", "FN", "T_bulk", "aux1", "aux2", "aux3", "aux4",
-];
 
 /// Value reference of the first material parameter (the others follow in `SPECS` order).
 pub const VR_PARAM0: u32 = 100;
@@ -364,161 +592,10 @@ fn unit_of(spec_unit: &'static str) -> Option<&'static str> {
 /// Builds the table. Value references are unique over all types.
 pub fn table() -> Vec<Var> {
     let cfg = default_config();
-    let inp = Inputs::default();
-    let mut v = Vec::new();
-    let real = |name: &str, vr, causality, unit, start: Start, description: &str, slot| Var {
-        name: name.into(),
-        vr,
-        kind: Kind::Real,
-        causality,
-        unit,
-        description: description.into(),
-        start,
-        min: None,
-        max: None,
-        slot,
-    };
+    let mut v: Vec<Var> = In::ALL.iter().map(|i| i.var()).collect();
+    v.extend(Out::ALL.iter().map(|o| o.var()));
+    v.extend(Geo::ALL.iter().map(|g| g.var()));
     use Causality::*;
-    let ins: [(In, Option<&'static str>, f64, &str); 6] = [
-        (In::Cx, None, inp.cx, "longitudinal creepage c_x = v_x/|v| (slip velocity of the wheel against the rail along x, the rolling direction, over the rolling speed); > 0 traction (driven wheel turns faster than it rolls), < 0 braking; Fx (force on the wheel) has the sign of cx"),
-        (In::Cy, None, inp.cy, "lateral creepage c_y = v_y/|v| (lateral slip velocity of the wheel, y = z x x with z the contact normal into the wheel); Fy has its sign (Kalker's eta with the force on the wheel, i.e. Kalker's traction negated)"),
-        (In::Spin, Some("1/m"), inp.spin, "spin creepage omega_z/|v| (relative rotation rate of the wheel about the contact normal z, into the wheel); spin > 0 gives Fy > 0 and Mz > 0 at small creepage"),
-        (In::V, Some("m/s"), inp.v, "rolling (vehicle) speed; < 0 rolls backwards (the mirror image; the bristles stay in the contact when the sign changes); 0 is standstill (no advection, no heat)"),
-        (In::Fn, Some("N"), inp.fn_n, "normal force on the contact; <= 0 is lift-off (all forces zero)"),
-        (In::TBulk, Some("degC"), inp.t_bulk, "bulk (ambient) temperature of wheel and rail"),
-    ];
-    for (i, (slot, unit, start, d)) in ins.into_iter().enumerate() {
-        v.push(real(
-            INPUT_NAMES[i],
-            1 + i as u32,
-            Input,
-            unit,
-            Start::Real(start),
-            d,
-            Slot::Input(slot),
-        ));
-    }
-    let outs: [(Out, &str, Option<&'static str>, &str); 13] = [
-        (
-            Out::Fx,
-            "Fx",
-            Some("N"),
-            "longitudinal creep force on the wheel (positive with c_x: traction)",
-        ),
-        (
-            Out::Fy,
-            "Fy",
-            Some("N"),
-            "lateral creep force (positive with c_y)",
-        ),
-        (
-            Out::Mz,
-            "Mz",
-            Some("N.m"),
-            "spin moment about the contact normal, int (x tau_y - y tau_x) dA",
-        ),
-        (
-            Out::F,
-            "f",
-            None,
-            "traction coefficient Fx/FN (0 at lift-off)",
-        ),
-        (
-            Out::TMax,
-            "T_max",
-            Some("degC"),
-            "maximum flash temperature in the contact",
-        ),
-        (
-            Out::TMean,
-            "T_mean",
-            Some("degC"),
-            "area-weighted mean temperature in the contact",
-        ),
-        (
-            Out::PFric,
-            "P_fric",
-            Some("W"),
-            "frictional power dissipated in the contact (both bodies)",
-        ),
-        (
-            Out::FracElastic,
-            "frac_elastic",
-            None,
-            "area fraction of elastic (adhering) bristles",
-        ),
-        (
-            Out::FracPlastic,
-            "frac_plastic",
-            None,
-            "area fraction of plastically hardening bristles",
-        ),
-        (
-            Out::FracSliding,
-            "frac_sliding",
-            None,
-            "area fraction of sliding bristles",
-        ),
-        (
-            Out::A,
-            "a",
-            Some("m"),
-            "contact semi-axis in rolling direction",
-        ),
-        (
-            Out::B,
-            "b",
-            Some("m"),
-            "lateral contact semi-axis (line contact: half width)",
-        ),
-        (Out::P0, "p0", Some("Pa"), "maximum Hertz pressure"),
-    ];
-    for k in 0..N_AUX {
-        v.push(real(
-            INPUT_NAMES[6 + k],
-            VR_AUX0 + k as u32,
-            Input,
-            None,
-            Start::Real(0.0),
-            &format!("auxiliary input {}: the value of a data column used by formula or custom effects of the configuration, mapped by the parameter columns (e.g. columns = \"humidity=aux{}\"); unused otherwise", k + 1, k + 1),
-            Slot::Input(In::Aux(k)),
-        ));
-    }
-    for (i, (slot, name, unit, d)) in outs.into_iter().enumerate() {
-        v.push(real(
-            name,
-            10 + i as u32,
-            Output,
-            unit,
-            Start::None,
-            d,
-            Slot::Output(slot),
-        ));
-    }
-    let (a0, b0, f0) = match cfg.geometry {
-        Geometry::SemiAxes { a, b, fn_ref } => (a, b, fn_ref),
-        _ => (7.63e-3, 7.88e-3, 110e3),
-    };
-    let geos: [(Geo, &str, &'static str, f64, &str); 5] = [
-        (Geo::ARef, "a_ref", "m", a0, "semi-axis in rolling direction at FN_ref (geometry = 1); scales with (FN/FN_ref)^(1/3)"),
-        (Geo::BRef, "b_ref", "m", b0, "lateral semi-axis at FN_ref (geometry = 1)"),
-        (Geo::FnRef, "FN_ref", "N", f0, "reference normal force of a_ref, b_ref (geometry = 1)"),
-        (Geo::Rx, "Rx", "m", RX_START, "equivalent radius of curvature in rolling direction, Hertz (geometry = 2)"),
-        (Geo::Ry, "Ry", "m", RY_START, "equivalent lateral radius of curvature, Hertz (geometry = 2)"),
-    ];
-    for (i, (slot, name, unit, start, d)) in geos.into_iter().enumerate() {
-        let mut var = real(
-            name,
-            30 + i as u32,
-            Parameter,
-            Some(unit),
-            Start::Real(start),
-            &format!("{d}; {UNSET}"),
-            Slot::Geo(slot),
-        );
-        var.min = Some(0.0);
-        v.push(var);
-    }
     v.push(Var {
         name: "geometry".into(),
         vr: 40,
