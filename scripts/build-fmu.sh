@@ -116,7 +116,7 @@ edition = "2021"
 publish = false
 
 [[bin]]
-name = "ecf"
+name = "ecf-with-$ELIB"
 path = "src/main.rs"
 
 [dependencies]
@@ -228,10 +228,11 @@ s.freeInstance()
 print("build-fmu: smoke test ok (instantiate with the packed GUID)")
 PY
 if [ -n "$EFFECTS" ]; then
-  # the ecf binary with the same effects (built for this machine)
-  cargo build --release "${MAN[@]}" -p ecf-with-effects --target "$TARGET" >&2
+  # the ecf binary with the same effects (built for this machine, beside the project's own
+  # target/release/ecf, whose compiled dependencies it shares)
+  cargo build --release "${MAN[@]}" -p ecf-with-effects >&2
   mkdir -p "$DEST"
-  cp "target/$TARGET/release/ecf" "$DEST/ecf"
+  cp "target/release/ecf-with-$ELIB" "$DEST/ecf"
   echo "build-fmu: with $EPKG: $DEST/ecf and $OUT" >&2
 fi
 echo "$OUT"
