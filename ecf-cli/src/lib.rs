@@ -807,6 +807,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
     Ok(())
 }
 
+mod cleanup;
 mod measure_cmd;
 mod plots;
 
@@ -817,6 +818,7 @@ use measure_cmd::Data;
 /// builds it again with a user's effect crate linked in.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
+    cleanup::install();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -130,6 +130,8 @@ fn write_plots(
                 };
             }
             let mut m = Model::new(&c)?;
+            // the data columns of formula/custom effects at the series' first row
+            m.set_extra(&ecf_measure::evaluate::extras(data, r0))?;
             let mut curve = Vec::new();
             for j in 0..=60 {
                 let cx = lo + (hi - lo) * (j as f64 / 60.0).powi(2); // dense near the steep rise
@@ -240,13 +242,6 @@ fn write_plots(
 }
 
 /// Removes a temporary folder when dropped (also when a report fails half-way).
-struct TempDir(std::path::PathBuf);
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 fn sanitize(s: &str) -> String {
     s.chars()
@@ -454,8 +449,10 @@ pub fn report(
     threads: usize,
     out: &Path,
 ) -> Result<(), CreepError> {
-    let guard = TempDir(std::env::temp_dir().join(format!("ecf-report-{}", std::process::id())));
-    let tmp = guard.0.clone();
+    let guard = crate::cleanup::Pending::new(
+        std::env::temp_dir().join(format!("ecf-report-{}", std::process::id())),
+    );
+    let tmp = guard.path().to_path_buf();
     let _ = std::fs::remove_dir_all(&tmp);
     let (col1, cv1) = report_column(
         cfg,
@@ -515,15 +512,22 @@ pub fn report(
         n = data.rows.len(),
         ver = env!("CARGO_PKG_VERSION"),
     );
-    let tmp_out = out.with_extension("html.tmp");
-    std::fs::write(&tmp_out, html).map_err(|e| CreepError::Config {
-        source_name: tmp_out.display().to_string(),
+    write_atomically(out, "html.tmp", html.as_bytes())
+}
+
+/// Writes `out` through a temporary file beside it (extension `ext`), renamed at the end; the
+/// temporary file is removed on an error or an interrupt, and `out` is never half-written.
+fn write_atomically(out: &Path, ext: &str, bytes: &[u8]) -> Result<(), CreepError> {
+    let tmp = crate::cleanup::Pending::new(out.with_extension(ext));
+    std::fs::write(tmp.path(), bytes).map_err(|e| CreepError::Config {
+        source_name: tmp.path().display().to_string(),
         message: format!("cannot write: {e}"),
     })?;
-    std::fs::rename(&tmp_out, out).map_err(|e| CreepError::Config {
+    std::fs::rename(tmp.path(), out).map_err(|e| CreepError::Config {
         source_name: out.display().to_string(),
         message: format!("cannot write: {e}"),
     })?;
+    tmp.done();
     Ok(())
 }
 
@@ -706,15 +710,7 @@ fn report_fit(
     let text = serde_json::to_string_pretty(&r.config.to_json())
         .map_err(|e| CreepError::State(e.to_string()))?
         + "\n";
-    let tmp = out.with_extension("json.tmp");
-    std::fs::write(&tmp, text).map_err(|e| CreepError::Config {
-        source_name: tmp.display().to_string(),
-        message: format!("cannot write: {e}"),
-    })?;
-    std::fs::rename(&tmp, out).map_err(|e| CreepError::Config {
-        source_name: out.display().to_string(),
-        message: format!("cannot write: {e}"),
-    })?;
+    write_atomically(out, "json.tmp", text.as_bytes())?;
     for m in &r.warnings {
         eprintln!("warning: {m}");
     }

@@ -244,3 +244,95 @@ fn diagnose_report_does_not_depend_on_the_thread_count() {
     assert_eq!(one, run(Some("3")));
     assert_eq!(one, run(None));
 }
+
+/// The worked example's files (a formula effect reading the data column `humidity`).
+fn worked_example() -> (String, String) {
+    let ex = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/measurements");
+    (
+        ex.join("humid.csv").display().to_string(),
+        ex.join("dry-humid.json").display().to_string(),
+    )
+}
+
+#[test]
+fn plots_and_report_of_a_configuration_reading_a_data_column() {
+    // the dense model curves of the plots are evaluated at the series' data-column values
+    // (they failed with "uses the column 'humidity', which the data do not provide")
+    let (data, cfg) = worked_example();
+    let d = dir("column-plots");
+    let plots = d.join("plots");
+    let (code, _, err) = ecf(&[
+        "compare",
+        &data,
+        "--config",
+        &cfg,
+        "--plots",
+        plots.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let pngs = std::fs::read_dir(&plots)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "png")
+        })
+        .count();
+    assert!(pngs >= 3, "{pngs} PNGs");
+    let html = d.join("r.html");
+    let (code, _, err) = ecf(&[
+        "report",
+        &data,
+        "--config",
+        &cfg,
+        "--out",
+        html.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&html).unwrap();
+    assert!(text.contains("data:image/png;base64,") && text.contains("humid"));
+}
+
+#[test]
+fn an_interrupted_report_leaves_no_temporary_files() {
+    let (data, cfg) = worked_example();
+    let d = dir("interrupt");
+    let mut interrupted = 0;
+    for (k, delay_ms) in [50u64, 150, 400, 900].into_iter().enumerate() {
+        let html = d.join(format!("r{k}.html"));
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ecf"))
+            .args(["report", &data, "--config", &cfg, "--quiet", "--out"])
+            .arg(&html)
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("run ecf");
+        std::thread::sleep(std::time::Duration::from_millis(delay_ms));
+        let pid = child.id();
+        let _ = Command::new("kill")
+            .args(["-INT", &pid.to_string()])
+            .status();
+        let status = child.wait().unwrap();
+        let tmp = std::env::temp_dir().join(format!("ecf-report-{pid}"));
+        assert!(
+            !tmp.exists(),
+            "{} left after SIGINT at {delay_ms} ms",
+            tmp.display()
+        );
+        assert!(!html.with_extension("html.tmp").exists());
+        if status.code() == Some(130) {
+            interrupted += 1;
+            assert!(
+                !html.exists(),
+                "an interrupted report wrote {}",
+                html.display()
+            );
+        } else {
+            assert_eq!(status.code(), Some(0), "{status:?}");
+        }
+    }
+    assert!(interrupted > 0, "no run was interrupted");
+}

@@ -35,7 +35,8 @@ fn config_for(cfg: &Config, r: &Row) -> Config {
     c
 }
 
-fn extras(data: &Dataset, r: &Row) -> Vec<(String, f64)> {
+/// The data-column values of row `r` as (name, value) pairs, for [`creep_core::Model::set_extra`].
+pub fn extras(data: &Dataset, r: &Row) -> Vec<(String, f64)> {
     data.extra_names
         .iter()
         .cloned()
