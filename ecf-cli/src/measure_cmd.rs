@@ -241,8 +241,6 @@ fn write_plots(
     Ok(written)
 }
 
-/// Removes a temporary folder when dropped (also when a report fails half-way).
-
 fn sanitize(s: &str) -> String {
     s.chars()
         .map(|c| {
