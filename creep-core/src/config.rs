@@ -186,6 +186,12 @@ struct RawConfig {
     formula_effects: Option<Vec<RawFormula>>,
     #[serde(default)]
     custom_effects: Option<Vec<RawCustom>>,
+    /// The record `ecf fit` writes beside a fitted configuration (start and fitted values,
+    /// standard errors, flags, CV(RMSE) before and after); read by `ecf report`, not by the
+    /// model.
+    #[serde(default, skip_serializing)]
+    #[allow(dead_code)]
+    fit: Option<Value>,
 }
 
 #[derive(Debug, Deserialize, Serialize)]

@@ -386,14 +386,24 @@ fn esc(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// Comparison table, plots (embedded) of one configuration as an HTML fragment.
+/// One configuration's part of the report, as HTML fragments.
+struct Column {
+    /// Heading, CV(RMSE) and the measured-against-model curves.
+    curves: String,
+    /// The CV(RMSE) table by group and the residual plots.
+    residuals: String,
+    /// CV(RMSE) overall, %.
+    cv: f64,
+}
+
+/// Comparison table and plots (embedded) of one configuration.
 fn report_column(
     cfg: &Config,
     name: &str,
     data: &Dataset,
     threads: usize,
     tmp: &Path,
-) -> Result<(String, f64), CreepError> {
+) -> Result<Column, CreepError> {
     use base64::Engine;
     let pred = predict(cfg, data, threads)?;
     let c = cmp(data, &pred);
@@ -418,24 +428,84 @@ fn report_column(
     }
     table += "</table>";
     let n_series = data.series().len();
+    let mut res = format!("<h3>{}: residuals</h3>{table}", esc(name));
     for (k, (p, caption)) in figures.iter().enumerate() {
-        if k == n_series {
-            h += "<h3>Residuals</h3>";
-        }
         let bytes = std::fs::read(p).map_err(|e| CreepError::Config {
             source_name: p.display().to_string(),
             message: e.to_string(),
         })?;
         let b64 = base64::engine::general_purpose::STANDARD.encode(bytes);
-        h += &format!(
+        let fig = format!(
             "<figure><img alt=\"{c}\" src=\"data:image/png;base64,{b64}\"><figcaption>{c}</figcaption></figure>",
             c = esc(caption)
         );
-        if k + 1 == n_series {
-            h += &table;
+        if k < n_series {
+            h += &fig;
+        } else {
+            res += &fig;
         }
     }
-    Ok((h, c.cv_rmse_pct))
+    Ok(Column {
+        curves: h,
+        residuals: res,
+        cv: c.cv_rmse_pct,
+    })
+}
+
+/// The table of fitted parameters from the `"fit"` record `ecf fit` writes into a fitted
+/// configuration file (empty when the file has none, e.g. a configuration written by hand).
+fn fitted_table(path: &str) -> String {
+    let rec = std::fs::read_to_string(path)
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|v| v.get("fit").cloned());
+    let Some(rec) = rec else {
+        return String::new();
+    };
+    let num = |v: &serde_json::Value| -> String {
+        match v {
+            serde_json::Value::Number(n) => n.as_f64().map_or("-".into(), |x| format!("{x:.6}")),
+            serde_json::Value::String(s) => s.clone(),
+            _ => "-".into(),
+        }
+    };
+    let mut h = String::from("<h2>Fitted parameters</h2><table><tr><th>parameter</th><th>start</th><th>fitted</th><th>standard error</th><th>unit</th><th>flag</th></tr>");
+    for p in rec
+        .get("params")
+        .and_then(|p| p.as_array())
+        .into_iter()
+        .flatten()
+    {
+        let se = match p.get("stderr") {
+            Some(serde_json::Value::Number(n)) => {
+                n.as_f64().map_or("-".into(), |x| format!("± {x:.2e}"))
+            }
+            Some(serde_json::Value::String(s)) => format!("± {s}"),
+            _ => "-".into(),
+        };
+        let flag = p.get("flag").and_then(|f| f.as_str()).unwrap_or("");
+        h += &format!(
+            "<tr><td>{}</td><td>{}</td><td><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            esc(p.get("name").and_then(|n| n.as_str()).unwrap_or("?")),
+            num(p.get("start").unwrap_or(&serde_json::Value::Null)),
+            num(p.get("value").unwrap_or(&serde_json::Value::Null)),
+            esc(&se),
+            esc(p.get("unit").and_then(|u| u.as_str()).unwrap_or("-")),
+            esc(flag)
+        );
+    }
+    h += "</table>";
+    for w in rec
+        .get("warnings")
+        .and_then(|w| w.as_array())
+        .into_iter()
+        .flatten()
+    {
+        if let Some(w) = w.as_str() {
+            h += &format!("<p>warning: {}</p>", esc(w));
+        }
+    }
+    h
 }
 
 /// Writes the self-contained HTML report (atomically).
@@ -452,7 +522,7 @@ pub fn report(
     );
     let tmp = guard.path().to_path_buf();
     let _ = std::fs::remove_dir_all(&tmp);
-    let (col1, cv1) = report_column(
+    let col1 = report_column(
         cfg,
         &format!("before: {name}"),
         data,
@@ -496,16 +566,28 @@ pub fn report(
         diag += &format!("<tr><td>{}</td><td>{:+.2}</td></tr>", esc(&c.variable), c.r);
     }
     diag += "</table>";
+    let cv1 = col1.cv;
     let summary = match &col2 {
-        Some((_, cv2)) => format!("<p class=big>CV(RMSE): {cv1:.2} % &rarr; {cv2:.2} %</p>"),
+        Some(c2) => format!(
+            "<p class=big>CV(RMSE): {cv1:.2} % &rarr; {:.2} %</p>",
+            c2.cv
+        ),
         None => format!("<p class=big>CV(RMSE): {cv1:.2} %</p>"),
     };
-    let cols = match col2 {
-        Some((c2, _)) => format!("<div class=cols><div>{col1}</div><div>{c2}</div></div>"),
-        None => format!("<div>{col1}</div>"),
+    // measured against model first, then the fitted parameters, then the residuals, then
+    // the diagnosis
+    let side = |a: &str, b: Option<&str>| match b {
+        Some(b) => format!("<div class=cols><div>{a}</div><div>{b}</div></div>"),
+        None => format!("<div>{a}</div>"),
     };
+    let fitted = second.map(|(p, _)| fitted_table(p)).unwrap_or_default();
+    let cols = side(&col1.curves, col2.as_ref().map(|c| c.curves.as_str()))
+        + &fitted
+        + "<h2>Residuals</h2>"
+        + &side(&col1.residuals, col2.as_ref().map(|c| c.residuals.as_str()))
+        + &diag;
     let html = format!(
-        "<!DOCTYPE html><html><head><meta charset=utf-8><title>ECF report: {src}</title><style>body{{font-family:sans-serif;margin:2em;max-width:1900px}} table{{border-collapse:collapse;margin:1em 0}} td,th{{border:1px solid #bbb;padding:3px 8px;text-align:left}} .cols{{display:flex;gap:2em}} .cols>div{{flex:1;min-width:0}} img{{max-width:100%}} .big{{font-size:1.3em}}</style></head><body><h1>Measurements {src} ({n} rows) against the model</h1>{summary}{diag}{cols}<p>Generated by ecf {ver}.</p></body></html>\n",
+        "<!DOCTYPE html><html><head><meta charset=utf-8><title>ECF report: {src}</title><style>body{{font-family:sans-serif;margin:2em;max-width:1900px}} table{{border-collapse:collapse;margin:1em 0}} td,th{{border:1px solid #bbb;padding:3px 8px;text-align:left}} .cols{{display:flex;gap:2em}} .cols>div{{flex:1;min-width:0}} img{{max-width:100%}} .big{{font-size:1.3em}}</style></head><body><h1>Measurements {src} ({n} rows) against the model</h1>{summary}{cols}<p>Generated by ecf {ver}.</p></body></html>\n",
         src = esc(&data.source),
         n = data.rows.len(),
         ver = env!("CARGO_PKG_VERSION"),
@@ -698,6 +780,56 @@ pub fn fit_hpt(
     report_fit(&r, out, json, w)
 }
 
+/// A JSON number, or "inf"/"-inf", or null for NaN.
+fn json_num(x: f64) -> serde_json::Value {
+    if x.is_finite() {
+        serde_json::json!(x)
+    } else if x.is_infinite() {
+        serde_json::json!(if x > 0.0 { "inf" } else { "-inf" })
+    } else {
+        serde_json::Value::Null
+    }
+}
+
+/// The unit of a fitted parameter's display value ("-" for formula/custom parameters).
+fn param_unit(name: &str) -> &'static str {
+    params::by_name(name)
+        .map(|p| params::spec(p).unit)
+        .unwrap_or("-")
+}
+
+/// The `"fit"` record of a fitted configuration: what `ecf report` shows as the table of
+/// fitted parameters (values in display units, standard errors, flags).
+fn fit_record(r: &ecf_measure::fit::FitResult) -> serde_json::Value {
+    let params: Vec<serde_json::Value> = r
+        .params
+        .iter()
+        .enumerate()
+        .map(|(k, (n, start, value, se))| {
+            let st = r.status.get(k);
+            serde_json::json!({
+                "name": n,
+                "unit": param_unit(n),
+                "start": json_num(*start),
+                "value": json_num(*value),
+                "stderr": match st {
+                    Some(ecf_measure::fit::ParamStatus::Determined) => json_num(*se),
+                    Some(ecf_measure::fit::ParamStatus::NotIdentifiable) => json_num(f64::INFINITY),
+                    _ => serde_json::Value::Null,
+                },
+                "flag": st.map(|s| s.note()).unwrap_or(""),
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "cv_rmse_pct_before": json_num(r.cv_rmse_pct_before),
+        "cv_rmse_pct_after": json_num(r.cv_rmse_pct_after),
+        "params": params,
+        "warnings": r.warnings,
+        "termination": r.termination,
+    })
+}
+
 /// Writes the fitted configuration atomically (temporary file, then rename) and reports the fit.
 fn report_fit(
     r: &ecf_measure::fit::FitResult,
@@ -705,9 +837,12 @@ fn report_fit(
     json: bool,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let text = serde_json::to_string_pretty(&r.config.to_json())
-        .map_err(|e| CreepError::State(e.to_string()))?
-        + "\n";
+    let mut doc = r.config.to_json();
+    if let Some(o) = doc.as_object_mut() {
+        o.insert("fit".into(), fit_record(r));
+    }
+    let text =
+        serde_json::to_string_pretty(&doc).map_err(|e| CreepError::State(e.to_string()))? + "\n";
     write_atomically(out, "json.tmp", text.as_bytes())?;
     for m in &r.warnings {
         eprintln!("warning: {m}");

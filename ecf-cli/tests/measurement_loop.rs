@@ -295,6 +295,56 @@ fn plots_and_report_of_a_configuration_reading_a_data_column() {
     assert_eq!(code, 0, "{err}");
     let text = std::fs::read_to_string(&html).unwrap();
     assert!(text.contains("data:image/png;base64,") && text.contains("humid"));
+    assert!(
+        !text.contains("Fitted parameters"),
+        "no fit record, no table"
+    );
+
+    // with the fitted configuration: curves, then the fitted parameters (from the "fit"
+    // record ecf fit writes), then the residuals, then the diagnosis
+    let fitted = d.join("fitted.json");
+    let (code, _, err) = ecf(&[
+        "fit",
+        &data,
+        "--config",
+        &cfg,
+        "--free",
+        "humid.k,tau_c2_0_GPa",
+        "--out",
+        fitted.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let rec: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&fitted).unwrap()).unwrap();
+    let k = &rec["fit"]["params"][0];
+    assert_eq!(k["name"], "humid.k");
+    let (kv, kse) = (k["value"].as_f64().unwrap(), k["stderr"].as_f64().unwrap());
+    assert!(kv > 0.2 && kse > 0.0 && kse < 0.1 * kv, "{k}");
+    let (code, _, err) = ecf(&[
+        "report",
+        &data,
+        "--config",
+        &cfg,
+        "--compare-with",
+        fitted.to_str().unwrap(),
+        "--out",
+        html.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&html).unwrap();
+    let at = |s: &str| text.find(s).unwrap_or_else(|| panic!("'{s}' missing"));
+    let first_curve = at("Measured traction coefficient (points) and model (line)");
+    let table = at("<h2>Fitted parameters</h2>");
+    let residuals = at("<h2>Residuals</h2>");
+    let diagnosis = at("<h2>Diagnosis");
+    assert!(first_curve < table && table < residuals && residuals < diagnosis);
+    assert!(
+        text.contains(&format!("<b>{kv:.6}</b>")),
+        "fitted k in the table"
+    );
+    assert!(text.contains(&format!("± {kse:.2e}")), "its standard error");
 }
 
 #[test]
