@@ -391,6 +391,20 @@ pub fn detect_delimiter(text: &str) -> u8 {
 
 /// Splits a header into (base, unit): `v [m/s]`, `v (km/h)`, or `v_kmh` when the suffix is a
 /// unit of a quantity whose spelling is the prefix. Returns the quantity index and the unit.
+/// A header "name [unit]" or "name (unit)" split into its trimmed name and unit; a header
+/// without a bracketed unit is (header, None).
+fn split_bracket_unit(h: &str) -> (&str, Option<&str>) {
+    let t = h.trim();
+    for (open, close) in [('[', ']'), ('(', ')')] {
+        if t.ends_with(close) {
+            if let Some(i) = t.rfind(open) {
+                return (t[..i].trim(), Some(t[i + 1..t.len() - 1].trim()));
+            }
+        }
+    }
+    (t, None)
+}
+
 fn recognise(h: &str) -> Option<(usize, String)> {
     let norm = |s: &str| s.trim().to_lowercase().replace(' ', "_");
     let unit_norm = |s: &str| s.trim().to_lowercase().replace(' ', "");
@@ -623,14 +637,36 @@ impl Dataset {
                 how: format!("not in the file: {} degC (default)", defaults.t_bulk_c),
             });
         }
-        for &i in &extra_idx {
+        // an extra column's name drops a bracketed unit ("humidity [%]" is the column
+        // `humidity` of formula and Rust effects), unless that name is taken
+        let extra_names: Vec<String> = extra_idx
+            .iter()
+            .map(|&i| {
+                let (name, unit) = split_bracket_unit(&header[i]);
+                let taken = header
+                    .iter()
+                    .enumerate()
+                    .any(|(k, h)| k != i && (h == name || split_bracket_unit(h).0 == name));
+                if unit.is_some() && !taken && !name.is_empty() {
+                    name.to_string()
+                } else {
+                    header[i].clone()
+                }
+            })
+            .collect();
+        for (&i, name) in extra_idx.iter().zip(&extra_names) {
+            let unit = split_bracket_unit(&header[i]).1;
             columns.push(ColumnMap {
                 header: header[i].clone(),
                 quantity: None,
-                how: "extra column (not a known quantity; numeric)".into(),
+                how: match unit {
+                    Some(u) if *name != header[i] => format!(
+                        "extra column '{name}' in {u} (not a known quantity; numeric, taken as written)"
+                    ),
+                    _ => "extra column (not a known quantity; numeric)".into(),
+                },
             });
         }
-        let extra_names: Vec<String> = extra_idx.iter().map(|&i| header[i].clone()).collect();
         let (ia, ib) = (cols[qi("a_mm")], cols[qi("b_mm")]);
         if ia.is_some() != ib.is_some() {
             return Err(err(
@@ -1164,6 +1200,19 @@ mod tests {
                 "{text:?}: {e}"
             );
         }
+    }
+
+    #[test]
+    fn extra_columns_drop_a_bracketed_unit_unless_the_name_is_taken() {
+        let t = "cx,f,v_mps,fn_kN,humidity [%],salt (g/m2)\n0.01,0.3,5,110,40,0.2\n";
+        let d = Dataset::from_csv_str(t, "x.csv", &Defaults::default()).unwrap();
+        assert_eq!(d.extra_names, vec!["humidity", "salt"]);
+        assert_eq!(d.rows[0].extra, vec![40.0, 0.2]);
+        assert!(d.mapping_text().contains("extra column 'humidity' in %"));
+        // both spellings present: each keeps its whole header
+        let t = "cx,f,v_mps,fn_kN,humidity,humidity [%]\n0.01,0.3,5,110,40,41\n";
+        let d = Dataset::from_csv_str(t, "x.csv", &Defaults::default()).unwrap();
+        assert_eq!(d.extra_names, vec!["humidity", "humidity [%]"]);
     }
 
     #[test]
