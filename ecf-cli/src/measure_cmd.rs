@@ -805,15 +805,15 @@ fn fit_record(r: &ecf_measure::fit::FitResult) -> serde_json::Value {
         .params
         .iter()
         .enumerate()
-        .map(|(k, (n, start, value, se))| {
+        .map(|(k, p)| {
             let st = r.status.get(k);
             serde_json::json!({
-                "name": n,
-                "unit": param_unit(n),
-                "start": json_num(*start),
-                "value": json_num(*value),
+                "name": p.name,
+                "unit": param_unit(&p.name),
+                "start": json_num(p.start),
+                "value": json_num(p.value),
                 "stderr": match st {
-                    Some(ecf_measure::fit::ParamStatus::Determined) => json_num(*se),
+                    Some(ecf_measure::fit::ParamStatus::Determined) => json_num(p.stderr),
                     Some(ecf_measure::fit::ParamStatus::NotIdentifiable) => json_num(f64::INFINITY),
                     _ => serde_json::Value::Null,
                 },
@@ -860,7 +860,7 @@ fn report_fit(
         let map = |k: usize| -> serde_json::Map<String, serde_json::Value> {
             r.params
                 .iter()
-                .map(|p| (p.0.clone(), num([p.1, p.2, p.3][k])))
+                .map(|p| (p.name.clone(), num([p.start, p.value, p.stderr][k])))
                 .collect()
         };
         let v = serde_json::json!({
@@ -869,8 +869,8 @@ fn report_fit(
             "params": map(1),
             "stderr": map(2),
             "start": map(0),
-            "status": r.params.iter().zip(&r.status).map(|(p, s)| (p.0.clone(), serde_json::json!(s))).collect::<serde_json::Map<_, _>>(),
-            "free": r.params.iter().map(|p| p.0.clone()).collect::<Vec<_>>(),
+            "status": r.params.iter().zip(&r.status).map(|(p, s)| (p.name.clone(), serde_json::json!(s))).collect::<serde_json::Map<_, _>>(),
+            "free": r.params.iter().map(|p| p.name.clone()).collect::<Vec<_>>(),
             "correlation": r.correlation.iter().map(|row| row.iter().map(|x| num(*x)).collect::<Vec<_>>()).collect::<Vec<_>>(),
             "warnings": r.warnings,
             "evaluations": r.evaluations,
@@ -886,7 +886,8 @@ fn report_fit(
         r.cv_rmse_pct_before, r.cv_rmse_pct_after, r.evaluations, r.termination
     )
     .map_err(io)?;
-    for ((n, s, v, se), st) in r.params.iter().zip(&r.status) {
+    for (p, st) in r.params.iter().zip(&r.status) {
+        let (n, s, v, se) = (&p.name, p.start, p.value, p.stderr);
         let unit = params::by_name(n)
             .map(|p| params::spec(p).unit)
             .unwrap_or("-");
@@ -912,7 +913,7 @@ fn report_fit(
                 writeln!(
                     w,
                     "  correlation {} / {} = {c:+.3}: the data hardly separate them",
-                    r.params[i].0, r.params[j].0
+                    r.params[i].name, r.params[j].name
                 )
                 .map_err(io)?;
             }

@@ -454,7 +454,7 @@ pub fn diagnose_with(
                 });
                 let h = heldout(&c, data, &labels, &free, threads, &opts)?;
                 let fitted = fit_params_with(&c, data, &free, threads, &opts, &|_| {})?;
-                let kfit = fitted.params.last().map(|p| p.2).unwrap_or(0.0);
+                let kfit = fitted.params.last().map(|p| p.value).unwrap_or(0.0);
                 candidates.push(Candidate {
                     effect: format!("formula: {} x exp(k ({} - {mean:.4}) / {sd:.4})", t.name(), cr.variable),
                     heldout_cv_rmse_pct: h,

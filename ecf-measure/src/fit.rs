@@ -218,7 +218,20 @@ impl ParamStatus {
     }
 }
 
-/// Result of a fit.
+/// One fitted parameter.
+#[derive(Clone, Debug)]
+pub struct FittedParam {
+    /// Name as `--free` takes it (registry name or `EFFECT.PARAM`).
+    pub name: String,
+    /// Value before the fit, display unit.
+    pub start: f64,
+    /// Fitted value, display unit.
+    pub value: f64,
+    /// Standard error, display unit (NaN when skipped, inf when not identifiable).
+    pub stderr: f64,
+}
+
+/// The result of a fit.
 #[derive(Clone, Debug)]
 pub struct FitResult {
     /// Status of each free parameter (order of `params`); empty when the fit skipped the
@@ -233,8 +246,8 @@ pub struct FitResult {
     pub cv_rmse_pct_before: f64,
     /// CV(RMSE) after the fit, %.
     pub cv_rmse_pct_after: f64,
-    /// Free parameters: (name, start value, fitted value, standard error), display units.
-    pub params: Vec<(String, f64, f64, f64)>,
+    /// Free parameters with their start and fitted values, display units.
+    pub params: Vec<FittedParam>,
     /// Correlation matrix of the free parameters (empty when the uncertainties were skipped).
     pub correlation: Vec<Vec<f64>>,
     /// Residual evaluations used.
@@ -599,7 +612,12 @@ pub fn fit_generic_with(
     let params = free
         .iter()
         .enumerate()
-        .map(|(k, id)| (id.name(cfg), start[k], values[k], stderr[k]))
+        .map(|(k, id)| FittedParam {
+            name: id.name(cfg),
+            start: start[k],
+            value: values[k],
+            stderr: stderr[k],
+        })
         .collect();
     Ok(FitResult {
         status,

@@ -97,6 +97,10 @@ fn custom_effect_parameter_is_fitted() {
         Config::from_json_str(&CUSTOM.replace("\"k\": 0.3", "\"k\": 0.0"), "start").unwrap();
     let free = [FreeParam::resolve(&start, "humidity_softening.k").unwrap()];
     let r = fit_params(&start, &data, &free, 2, &|_| {}).unwrap();
-    assert!((r.params[0].2 - 0.3).abs() < 1e-3, "k = {}", r.params[0].2);
+    assert!(
+        (r.params[0].value - 0.3).abs() < 1e-3,
+        "k = {}",
+        r.params[0].value
+    );
     assert!(r.cv_rmse_pct_after < 0.05 * r.cv_rmse_pct_before);
 }

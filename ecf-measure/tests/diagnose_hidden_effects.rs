@@ -304,9 +304,9 @@ fn hidden_effect_of_an_extra_column_is_found_by_residuals_and_a_formula_fixes_it
         r.cv_rmse_pct_after
     );
     assert!(
-        (r.params[0].2 - 0.3).abs() < 4.0 * r.params[0].3 + 0.02,
+        (r.params[0].value - 0.3).abs() < 4.0 * r.params[0].stderr + 0.02,
         "k = {} ± {}",
-        r.params[0].2,
-        r.params[0].3
+        r.params[0].value,
+        r.params[0].stderr
     );
 }

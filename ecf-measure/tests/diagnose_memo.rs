@@ -90,8 +90,9 @@ fn memoised_fit_without_uncertainties_gives_the_same_fit() {
         tolerance: None,
     };
     let fast = fit_params_with(&cfg, &data, &free, 1, &opts, &|_| {}).unwrap();
-    let values =
-        |r: &ecf_measure::fit::FitResult| -> Vec<f64> { r.params.iter().map(|p| p.2).collect() };
+    let values = |r: &ecf_measure::fit::FitResult| -> Vec<f64> {
+        r.params.iter().map(|p| p.value).collect()
+    };
     assert_eq!(bits(&values(&plain)), bits(&values(&fast)));
     assert_eq!(
         plain.cv_rmse_pct_after.to_bits(),

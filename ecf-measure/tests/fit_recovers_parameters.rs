@@ -54,7 +54,8 @@ fn fit_recovers_hidden_strengths_to_the_noise_level() {
         before > 3.0 * noise_cv,
         "the start must be visibly wrong: {before} %"
     );
-    for (name, _, value, se) in &r.params {
+    for p in &r.params {
+        let (name, value, se) = (&p.name, &p.value, &p.stderr);
         let t = if name == "tau_c1_0_GPa" { 0.36 } else { 0.95 };
         assert!(
             (value - t).abs() < 4.0 * se + 1e-3,

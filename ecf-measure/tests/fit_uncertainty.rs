@@ -57,7 +57,7 @@ fn registry_and_formula_parameters_get_standard_errors_the_same_way() {
     assert_eq!(r.status, vec![ParamStatus::Determined; 2]);
     // the known values come back within four standard errors, which are small
     for (k, want) in [(0, 0.6909), (1, 0.05)] {
-        let (name, _, got, se) = &r.params[k];
+        let (name, got, se) = (&r.params[k].name, &r.params[k].value, &r.params[k].stderr);
         assert!(
             se.is_finite() && *se > 0.0 && *se < 0.1 * want,
             "{name}: se {se}"
@@ -95,10 +95,10 @@ fn at_bound_and_not_identifiable_are_flagged_separately() {
         "{:?}",
         r.params
     );
-    assert!(r.params[0].3.is_finite() && r.params[0].3 > 0.0);
-    assert!(r.params[1].3.is_nan());
-    assert!(r.params[2].3.is_infinite());
-    assert!((r.params[1].2 - 0.01).abs() < 1e-4);
+    assert!(r.params[0].stderr.is_finite() && r.params[0].stderr > 0.0);
+    assert!(r.params[1].stderr.is_nan());
+    assert!(r.params[2].stderr.is_infinite());
+    assert!((r.params[1].value - 0.01).abs() < 1e-4);
 }
 
 #[test]
@@ -156,7 +156,7 @@ fn failed_fits_are_errors_and_implausible_values_warned() {
     free[0].set_bounds(&mut low, 0.0, 0.004).unwrap();
     let r = fit_params(&low, &wide, &free, 1, &|_| {}).unwrap();
     assert_eq!(r.status[0], ParamStatus::AtUpperBound);
-    assert!(r.params[0].2 <= 0.004);
+    assert!(r.params[0].value <= 0.004);
     assert!(
         r.warnings
             .iter()

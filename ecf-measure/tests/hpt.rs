@@ -87,7 +87,8 @@ fn fitting_hpt_curves_recovers_the_layer_parameters() {
     let r = hpt::fit(&start, "dry.csv", &data, &free, &|_| {}).unwrap();
     assert!(before > 10.0, "start must be off: {before} %");
     assert!(r.cv_rmse_pct_after < 0.1, "after {} %", r.cv_rmse_pct_after);
-    for (n, _, v, _) in &r.params {
+    for p in &r.params {
+        let (n, v) = (&p.name, &p.value);
         let t = truth.params.get(creep_core::params::by_name(n).unwrap());
         assert!((v - t).abs() < 1e-3 * t, "{n}: {v} vs {t}");
     }
