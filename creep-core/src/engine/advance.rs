@@ -133,6 +133,9 @@ impl Contact {
         // every trial temperature, so this is computed once per move, not per evaluation.
         let fixed = (!self.has_modifiers() && (self.r.le_t == 0.0 || !self.r.temperature))
             .then(|| flex(np.le));
+        // the law's material-independent parts of this move, shared by all evaluations
+        let mv = (self.r.rule == bristle::Rule::SameCharacteristic)
+            .then(|| bristle::Move::new(&old, du));
         let eval = |t: f64| -> (BristleState, f64) {
             let m = self.material(np, t, u_abs, slip);
             let (lxe, lye, dtau) = match fixed {
@@ -140,7 +143,10 @@ impl Contact {
                 None => flex(m.le),
             };
             let mut ns = old;
-            bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule);
+            match &mv {
+                Some(mv) => bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye]),
+                None => bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule),
+            }
             let q = if k.heat {
                 let tr = match release_ref.get() {
                     Some(r) => [
