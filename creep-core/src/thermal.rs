@@ -23,7 +23,7 @@ pub const H_SIGMA: f64 = 1.0;
 /// Number of exponential terms (plus one constant tail term, index 0).
 pub const N_KERNEL: usize = 30;
 const _: () = assert!(
-    N_KERNEL % 2 == 0,
+    N_KERNEL.is_multiple_of(2),
     "StepFactors::accumulate takes two lanes at a time"
 );
 
