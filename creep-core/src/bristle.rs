@@ -73,6 +73,8 @@ pub struct Material {
     pub le: f64,
 }
 
+use std::cell::Cell;
+
 const TINY: f64 = 1e-300;
 
 #[inline]
@@ -112,38 +114,97 @@ pub fn update(
     l: [f64; 2],
     rule: Rule,
 ) {
-    let u0 = s.u;
-    let u1 = [u0[0] + du[0], u0[1] + du[1]];
-    s.u = u1;
+    match rule {
+        Rule::SameCharacteristic => update_move(s, &Move::new(s, du), dtau, m, l),
+        Rule::ElasticUnloading => {
+            s.u = [s.u[0] + du[0], s.u[1] + du[1]];
+            if m.tc2.is_nan() || m.tc2 <= 0.0 {
+                s.tau = [0.0, 0.0];
+                s.regime = Regime::Sliding;
+                return;
+            }
+            elastic_unloading(s, dtau, m, l)
+        }
+    }
+}
+
+/// The parts of a move under [`Rule::SameCharacteristic`] that do not depend on the
+/// material: displacements before and after, their norms, the direction of tau and the old
+/// |tau|. A bristle's local temperature solve evaluates the law at several trial
+/// temperatures for one move; these are computed once for all of them.
+#[derive(Clone, Debug)]
+pub struct Move {
+    u0: [f64; 2],
+    u1: [f64; 2],
+    du: [f64; 2],
+    /// |u0|, |u1|, |tau| before the move.
+    n0: f64,
+    n1: f64,
+    t0: f64,
+    /// Direction of the new stress: along u1 (along the old tau, x where u1 = 0).
+    dir: [f64; 2],
+    /// (L_p, exp(-(|u1| - |u0|) / L_p)) of the last evaluation that needed the Voce decay
+    /// over the move (NaN before): with L_p independent of T (every preset) the trial
+    /// temperatures of a solve share it.
+    decay: Cell<(f64, f64)>,
+}
+
+impl Move {
+    /// The move of bristle `s` (state before the move) by the rigid slip `du`.
+    #[inline]
+    pub fn new(s: &BristleState, du: [f64; 2]) -> Self {
+        let u0 = s.u;
+        let u1 = [u0[0] + du[0], u0[1] + du[1]];
+        let t0 = norm(s.tau);
+        let n1 = norm(u1);
+        let dir = if n1 > TINY {
+            [u1[0] / n1, u1[1] / n1]
+        } else if t0 > TINY {
+            [s.tau[0] / t0, s.tau[1] / t0]
+        } else {
+            [1.0, 0.0]
+        };
+        Move {
+            u0,
+            u1,
+            du,
+            n0: norm(u0),
+            n1,
+            t0,
+            dir,
+            decay: Cell::new((f64::NAN, f64::NAN)),
+        }
+    }
+
+    /// exp(-(|u1| - |u0|) / lp), the Voce decay of a hardening bristle over the move,
+    /// computed once per value of `lp`.
+    #[inline]
+    fn decay(&self, lp: f64) -> f64 {
+        let (l, e) = self.decay.get();
+        if l == lp {
+            return e;
+        }
+        let e = (-(self.n1 - self.n0) / lp).exp();
+        self.decay.set((lp, e));
+        e
+    }
+}
+
+/// [`update`] under [`Rule::SameCharacteristic`] with the move's material-independent
+/// parts `mv` (from [`Move::new`] on the same state `s`): the same operations.
+#[inline]
+pub fn update_move(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Material, l: [f64; 2]) {
+    s.u = mv.u1;
     if m.tc2.is_nan() || m.tc2 <= 0.0 {
         s.tau = [0.0, 0.0];
         s.regime = Regime::Sliding;
         return;
     }
-    match rule {
-        Rule::SameCharacteristic => same_characteristic(s, u0, u1, du, dtau, m, l),
-        Rule::ElasticUnloading => elastic_unloading(s, dtau, m, l),
-    }
+    same_characteristic(s, mv, dtau, m, l)
 }
 
-fn same_characteristic(
-    s: &mut BristleState,
-    u0: [f64; 2],
-    u1: [f64; 2],
-    du: [f64; 2],
-    dtau: [f64; 2],
-    m: &Material,
-    l: [f64; 2],
-) {
-    let t0 = norm(s.tau);
-    let n1 = norm(u1);
-    let dir = if n1 > TINY {
-        [u1[0] / n1, u1[1] / n1]
-    } else if t0 > TINY {
-        [s.tau[0] / t0, s.tau[1] / t0]
-    } else {
-        [1.0, 0.0]
-    };
+fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Material, l: [f64; 2]) {
+    let (u0, du, t0, n1, dir) = (mv.u0, mv.du, mv.t0, mv.n1, mv.dir);
     let span = m.tc2 - m.tc1;
     let perfectly_plastic = span <= 1e-12 * m.tc2;
     if t0 >= m.tc2 {
@@ -157,11 +218,11 @@ fn same_characteristic(
             s.regime = Regime::Sliding;
             return;
         }
-        let dn = n1 - norm(u0);
+        let dn = n1 - mv.n0;
         if dn >= 0.0 {
             // Voce from s0 = voce_inv(t0) on: voce(s0 + dn) = tc2 - (tc2 - t0) exp(-dn/L_p)
             // (one exponential instead of the inverse-then-forward pair)
-            let t = m.tc2 - (m.tc2 - t0) * (-dn / m.lp).exp();
+            let t = m.tc2 - (m.tc2 - t0) * mv.decay(m.lp);
             s.tau = [t * dir[0], t * dir[1]];
             s.regime = Regime::Plastic;
             return;
@@ -185,7 +246,7 @@ fn same_characteristic(
             s.regime = Regime::Elastic;
             return;
         }
-        let n0 = norm(u0);
+        let n0 = mv.n0;
         if s.regime == Regime::Plastic && n1 > n0 && !perfectly_plastic {
             // tc1 rose above the stress of a hardening bristle during the move (the pressure
             // grows towards the middle of the contact) and the elastic increment takes it back
@@ -194,9 +255,7 @@ fn same_characteristic(
             // higher, never above the elastic trial. Without this, the elastic branch below
             // restarts the Voce curve at tc1 in every move, which makes the result depend on
             // the move length (+1 % per cell, docs/model.md section 4).
-            let t = (m.tc2 - (m.tc2 - t0) * (-(n1 - n0) / m.lp).exp())
-                .max(m.tc1)
-                .min(ntr);
+            let t = (m.tc2 - (m.tc2 - t0) * mv.decay(m.lp)).max(m.tc1).min(ntr);
             s.tau = [t * dir[0], t * dir[1]];
             s.regime = Regime::Plastic;
             return;

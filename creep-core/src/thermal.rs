@@ -14,6 +14,7 @@
 //! any sub-step size and any history length cost the same: O(N_KERNEL) per bristle and step.
 
 use std::f64::consts::PI;
+use wide::f64x2;
 
 /// Smallest decay rate of the kernel, 1/s.
 pub const S_MIN: f64 = 1e-3;
@@ -21,6 +22,10 @@ pub const S_MIN: f64 = 1e-3;
 pub const H_SIGMA: f64 = 1.0;
 /// Number of exponential terms (plus one constant tail term, index 0).
 pub const N_KERNEL: usize = 30;
+const _: () = assert!(
+    N_KERNEL.is_multiple_of(2),
+    "StepFactors::accumulate takes two lanes at a time"
+);
 
 /// The sum-of-exponentials approximation of 1/sqrt(s).
 #[derive(Clone, Debug)]
@@ -115,26 +120,35 @@ impl StepFactors {
     /// History sum sum_k w_k exp(-s_k h) A_k of Eq. 4.35 (all but the newest interval).
     #[inline]
     pub fn history(&self, acc: &[f64; N_KERNEL]) -> f64 {
-        // four partial sums, so that the compiler keeps them in SIMD lanes
-        let mut part = [0.0; 4];
+        // four partial sums in two two-lane registers (sums 0, 1 and 2, 3)
+        let (mut p01, mut p23) = (f64x2::ZERO, f64x2::ZERO);
         let (w4, a4) = (self.wdecay.chunks_exact(4), acc.chunks_exact(4));
         let (wr, ar) = (w4.remainder(), a4.remainder());
         for (w, a) in w4.zip(a4) {
-            for l in 0..4 {
-                part[l] += w[l] * a[l];
-            }
+            p01 += f64x2::new([w[0], w[1]]) * f64x2::new([a[0], a[1]]);
+            p23 += f64x2::new([w[2], w[3]]) * f64x2::new([a[2], a[3]]);
         }
+        let [mut p0, p1] = p01.to_array();
+        let [p2, p3] = p23.to_array();
         for (w, a) in wr.iter().zip(ar) {
-            part[0] += w * a;
+            p0 += w * a;
         }
-        (part[0] + part[1]) + (part[2] + part[3])
+        (p0 + p1) + (p2 + p3)
     }
 
     /// Accumulator update A_k <- exp(-s_k h) A_k + q (1 - exp(-s_k h))/s_k.
     #[inline]
     pub fn accumulate(&self, acc: &mut [f64; N_KERNEL], q: f64) {
-        for ((a, d), g) in acc.iter_mut().zip(self.decay.iter()).zip(self.gain.iter()) {
-            *a = d * *a + q * g;
+        // two lanes at a time (N_KERNEL is even)
+        let qq = f64x2::splat(q);
+        for ((a, d), g) in acc
+            .chunks_exact_mut(2)
+            .zip(self.decay.chunks_exact(2))
+            .zip(self.gain.chunks_exact(2))
+        {
+            let r =
+                f64x2::new([d[0], d[1]]) * f64x2::new([a[0], a[1]]) + qq * f64x2::new([g[0], g[1]]);
+            a.copy_from_slice(&r.to_array());
         }
     }
 }

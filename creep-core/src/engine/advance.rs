@@ -117,17 +117,36 @@ impl Contact {
         } else {
             1.0
         };
-        let eval = |t: f64| -> (BristleState, f64) {
-            let m = self.material(np, t, u_abs, slip);
-            let lxe = k.lx + m.le;
-            let lye = k.ly + m.le;
-            let lse = k.ls + m.le;
+        // flexibilities L + L_e and the elastic increment (Eq. 4.21) for the layer's L_e
+        let flex = |le: f64| {
+            let lxe = k.lx + le;
+            let lye = k.ly + le;
+            let lse = k.ls + le;
             let dtau = [
                 d * (k.cx / lxe - k.cs * y / lse),
                 d * (k.cy / lye + k.cs * x / lse),
             ];
+            (lxe, lye, dtau)
+        };
+        // Without a temperature coefficient of L_e (every preset) and without formula
+        // effects, material_base gives L_e = the node's (divided by exactly 1): the same for
+        // every trial temperature, so this is computed once per move, not per evaluation.
+        let fixed = (!self.has_modifiers() && (self.r.le_t == 0.0 || !self.r.temperature))
+            .then(|| flex(np.le));
+        // the law's material-independent parts of this move, shared by all evaluations
+        let mv = (self.r.rule == bristle::Rule::SameCharacteristic)
+            .then(|| bristle::Move::new(&old, du));
+        let eval = |t: f64| -> (BristleState, f64) {
+            let m = self.material(np, t, u_abs, slip);
+            let (lxe, lye, dtau) = match fixed {
+                Some(f) => f,
+                None => flex(m.le),
+            };
             let mut ns = old;
-            bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule);
+            match &mv {
+                Some(mv) => bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye]),
+                None => bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule),
+            }
             let q = if k.heat {
                 let tr = match release_ref.get() {
                     Some(r) => [
