@@ -64,7 +64,7 @@ if [ -n "$EFFECTS" ]; then
   EFF=$(cd "$EFFECTS" && pwd)
   meta=$(cargo metadata -q --no-deps --format-version 1 --manifest-path "$EFF/Cargo.toml") || {
     echo "build-fmu: --effects $EFFECTS: cargo cannot read $EFF/Cargo.toml" >&2; exit 2; }
-  read -r EPKG ELIB < <(python3 -c '
+  names=$(python3 -c '
 import json, sys
 m = json.loads(sys.stdin.read())
 p = [p for p in m["packages"] if p["manifest_path"] == sys.argv[1]][0]
@@ -74,6 +74,7 @@ if not lib:
 if not any(d["name"] == "creep-core" for d in p["dependencies"]):
     sys.exit("build-fmu: --effects: the crate does not depend on creep-core (it registers effects with creep_core::register_effect!)")
 print(p["name"], lib[0]["name"].replace("-", "_"))' "$EFF/Cargo.toml" <<<"$meta")
+  read -r EPKG ELIB <<<"$names"
   W="$ROOT/target/with-effects/$ELIB"
   mkdir -p "$W/fmu/src" "$W/cli/src"
   cat > "$W/Cargo.toml" <<TOML
