@@ -1,6 +1,5 @@
 //! Seed Fig. 4.11: higher speed lowers the maximum and moves it to smaller creepage; higher load lowers it.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::{Config, Geometry, Inputs};
 
 fn max_of(cfg: &Config, v: f64, fn_n: f64) -> (f64, f64) {

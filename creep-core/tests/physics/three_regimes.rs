@@ -1,6 +1,5 @@
 //! Seed Fig. 4.8: ECF `table4.1` at 20 m/s, 110 kN shows steep rise (R1), moderate rise (R2), a maximum and a falling branch (R3).
-mod common;
-use common::*;
+use crate::common::*;
 
 #[test]
 fn table41_curve_has_the_three_regimes() {

@@ -4,8 +4,7 @@
 //! circumferential speed v_w = v (1 + c_x) is higher in traction than in braking, so more
 //! heat flows into the wheel and its surface (the bristle) is hotter. With the temperature
 //! effect, f(c) + f(-c) is therefore small and of that sign; without it, exactly zero.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::Effect;
 
 #[test]

@@ -1,6 +1,5 @@
 //! Small-creepage slope of every bristle model equals Kalker's linear theory F = G a b C c.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::kalker;
 
 #[test]

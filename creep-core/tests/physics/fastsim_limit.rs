@@ -1,6 +1,5 @@
 //! ECF with tau_c1 = tau_c2 = mu p, no temperature, L_e = 0 is FASTSIM; FASTSIM saturates at mu.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::{kalker, Config, Effect};
 
 /// ECF's own 3BL material law driven into the Coulomb limit: equal critical stresses with a

@@ -1,6 +1,5 @@
 //! Rolling backwards (v < 0) is the mirror image of rolling forwards, and a transient run through v = 0 keeps the bristles in the contact.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::{Inputs, Model};
 
 /// Mirror x -> -x with creepages over |v|: c_x -> -c_x, c_y -> c_y, spin -> -spin; the

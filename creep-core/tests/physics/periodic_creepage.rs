@@ -1,6 +1,5 @@
 //! Seed Sec. 4.5.2: sine creepage gives a periodic f (limit cycle) that approaches the steady curve as the frequency goes to 0.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::Model;
 use std::f64::consts::PI;
 

@@ -1,6 +1,5 @@
 //! The work of a step is bounded: a step that rolls past the contact is the steady state of its inputs, a vanishing load is lift-off, and the continuous scheme follows the cell-by-cell reference.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::engine::{Scheme, F_LIFT_OFF};
 use creep_core::{Contact, Inputs, Model};
 

@@ -1,6 +1,5 @@
 //! The default grid is within 1 % of a 4x refined grid over 0.1 %-30 % creepage; transient results converge under time-step refinement.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::{config::DEFAULT_GRID, Model};
 
 #[test]

@@ -1,5 +1,4 @@
 //! An effect written in Rust (custom catalogue) acts like the equivalent formula effect and is fitted like any parameter.
-mod common;
 use creep_core::{Config, Inputs, Model};
 use ecf_measure::fit::{fit_params, FreeParam};
 

@@ -1,6 +1,5 @@
 //! The shortcuts of `diagnose` change nothing: memoised predictions and fits are bit-identical to the plain ones, and the diagnosis does not depend on the number of threads.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::formula::{FormulaEffect, Target};
 use creep_core::Config;
 use ecf_measure::diagnose::{diagnose, diagnose_with};

@@ -1,6 +1,5 @@
 //! Save/restore of the full state, input validation and standstill.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::{Effect, Inputs, Model};
 
 #[test]

@@ -1,6 +1,5 @@
 //! Seed Sec. 4.5.1: after a creepage step the force settles to the new steady value once every bristle entered after the step (t >= 2a/v).
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::{Effect, Inputs, Model};
 
 #[test]

@@ -1,8 +1,7 @@
 //! Fits on files made with known parameters: standard errors for every kind of parameter,
 //! at-bound and non-identifiable parameters flagged separately, and failed fits reported as
 //! failures (issue 12, "Fitting").
-mod common;
-use common::{preset, with_grid};
+use crate::common::{preset, with_grid};
 use creep_core::{Config, Inputs, Model};
 use ecf_measure::fit::{fit_params, FreeParam, ParamStatus};
 use ecf_measure::measure::{Dataset, Defaults};

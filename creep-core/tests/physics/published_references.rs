@@ -1,6 +1,5 @@
 //! Agreement with published contact mechanics at the edges: Carter's 2-D theory for the line contact, the brush's closed form, and the signs of Kalker's linear theory under c_y and spin.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::{engine, kalker, Geometry, Inputs};
 use std::f64::consts::PI;
 

@@ -1,6 +1,5 @@
 //! Fitting (Eq. 5.1) recovers hidden parameters from synthetic measurements to the noise level, with honest standard errors.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::params::P;
 use ecf_measure::evaluate::{compare, predict};
 use ecf_measure::fit::fit;

@@ -4,8 +4,7 @@
 //! rather than assumes: FASTSIM in full sliding on the same grid and geometry gives
 //! mu (1 + e_q) F_N, where e_q is the relative error of the nodes' quadrature of p (+0.35 %
 //! on 40x11, +0.09 % on 80x21, +0.02 % on 160x41: second order).
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::{engine, Effect, Inputs};
 
 /// Integral of the largest shear stress the layer can carry, tau_c2(p(x, y), T_B) (Eq. 4.4;

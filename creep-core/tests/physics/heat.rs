@@ -1,6 +1,5 @@
 //! Frictional heat is never negative; temperatures rise with creepage and speed (seed Sec. 4.2, Fig. 4.10).
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::Model;
 
 #[test]

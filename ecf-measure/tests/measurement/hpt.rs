@@ -1,6 +1,5 @@
 //! High-pressure-torsion curves of the layer alone (seed Sec. 5.1): shape of Eq. 4.1/4.2 and recovery of the parameters by fitting.
-mod common;
-use common::*;
+use crate::common::*;
 use ecf_measure::fit::FreeParam;
 use ecf_measure::hpt;
 use ecf_measure::measure::read_hpt;

@@ -1,6 +1,5 @@
 //! The measurement loop on files with a known hidden effect: diagnose names it, adding it brings the error to the noise level; with no hidden effect nothing is claimed.
-mod common;
-use common::*;
+use crate::common::*;
 use creep_core::{Config, Effect, Geometry, Inputs, Model};
 use ecf_measure::diagnose::diagnose;
 use ecf_measure::fit::{default_free, fit};

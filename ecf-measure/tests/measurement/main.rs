@@ -1,0 +1,13 @@
+//! ecf-measure's tests: measurement files, fits that recover known parameters and their uncertainties, HPT, Rust effects, diagnosis of hidden effects.
+//!
+//! One test binary for all of them: each file is a module (one link instead of 7; CI time).
+
+mod common;
+
+mod custom_effect;
+mod diagnose_hidden_effects;
+mod diagnose_memo;
+mod fit_recovers_parameters;
+mod fit_uncertainty;
+mod hpt;
+mod measurement_files;
