@@ -283,13 +283,20 @@ fn field_of(model: &Model) -> Result<Vec<FieldPoint>, CreepError> {
     })
 }
 
-/// A strength in the CSV: -1 stands for "no limit" (infinite).
-fn finite_or_minus_one(x: f64) -> f64 {
-    if x.is_finite() {
-        x
-    } else {
-        -1.0
-    }
+/// The columns tau_Pa,tau_x_Pa,tau_c1_Pa,tau_c2_Pa,p_Pa,T_C,regime of a field point (the
+/// same in `ecf field` and `ecf step --field-at-ms`); a strength without limit is -1.
+fn field_values(p: &FieldPoint) -> String {
+    let finite_or_minus_one = |x: f64| if x.is_finite() { x } else { -1.0 };
+    format!(
+        "{:.1},{:.1},{:.1},{:.1},{:.1},{:.3},{}",
+        p.tau,
+        p.tau_x,
+        finite_or_minus_one(p.tau_c1),
+        finite_or_minus_one(p.tau_c2),
+        p.p,
+        p.t,
+        p.regime
+    )
 }
 
 /// The instants of `--field-at-ms`: a comma-separated list of finite times >= 0 ms.
@@ -576,18 +583,12 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                     for p in field_of(&model)? {
                         writeln!(
                             w,
-                            "{},{:.8},{:.5},{:.5},{:.1},{:.1},{:.1},{:.1},{:.1},{:.3},{}",
+                            "{},{:.8},{:.5},{:.5},{}",
                             t_req,
                             o.f,
                             p.x * 1e3,
                             (p.x + m.v_mps * t) * 1e3,
-                            p.tau,
-                            p.tau_x,
-                            finite_or_minus_one(p.tau_c1),
-                            finite_or_minus_one(p.tau_c2),
-                            p.p,
-                            p.t,
-                            p.regime
+                            field_values(&p)
                         )
                         .map_err(io)?;
                     }
@@ -679,19 +680,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             )
             .map_err(io)?;
             for p in f {
-                writeln!(
-                    w,
-                    "{:.5},{:.1},{:.1},{:.1},{:.1},{:.1},{:.3},{}",
-                    p.x * 1e3,
-                    p.tau,
-                    p.tau_x,
-                    finite_or_minus_one(p.tau_c1),
-                    finite_or_minus_one(p.tau_c2),
-                    p.p,
-                    p.t,
-                    p.regime
-                )
-                .map_err(io)?;
+                writeln!(w, "{:.5},{}", p.x * 1e3, field_values(&p)).map_err(io)?;
             }
             warn(&mut model);
         }
