@@ -780,12 +780,13 @@ pub fn fit_hpt(
     report_fit(&r, out, json, w)
 }
 
-/// A JSON number, or "inf"/"-inf", or null for NaN.
+/// A JSON number, or "inf" for an infinity (a standard error of a parameter the data do not
+/// identify), or null for NaN (an uncertainty not computed).
 fn json_num(x: f64) -> serde_json::Value {
     if x.is_finite() {
         serde_json::json!(x)
     } else if x.is_infinite() {
-        serde_json::json!(if x > 0.0 { "inf" } else { "-inf" })
+        serde_json::json!("inf")
     } else {
         serde_json::Value::Null
     }
@@ -848,19 +849,10 @@ fn report_fit(
         eprintln!("warning: {m}");
     }
     if json {
-        let num = |x: f64| {
-            if x.is_finite() {
-                serde_json::json!(x)
-            } else if x.is_infinite() {
-                serde_json::json!("inf")
-            } else {
-                serde_json::Value::Null
-            }
-        };
         let map = |k: usize| -> serde_json::Map<String, serde_json::Value> {
             r.params
                 .iter()
-                .map(|p| (p.name.clone(), num([p.start, p.value, p.stderr][k])))
+                .map(|p| (p.name.clone(), json_num([p.start, p.value, p.stderr][k])))
                 .collect()
         };
         let v = serde_json::json!({
@@ -871,7 +863,7 @@ fn report_fit(
             "start": map(0),
             "status": r.params.iter().zip(&r.status).map(|(p, s)| (p.name.clone(), serde_json::json!(s))).collect::<serde_json::Map<_, _>>(),
             "free": r.params.iter().map(|p| p.name.clone()).collect::<Vec<_>>(),
-            "correlation": r.correlation.iter().map(|row| row.iter().map(|x| num(*x)).collect::<Vec<_>>()).collect::<Vec<_>>(),
+            "correlation": r.correlation.iter().map(|row| row.iter().map(|x| json_num(*x)).collect::<Vec<_>>()).collect::<Vec<_>>(),
             "warnings": r.warnings,
             "evaluations": r.evaluations,
             "termination": r.termination,
