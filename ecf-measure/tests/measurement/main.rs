@@ -2,6 +2,8 @@
 //!
 //! One test binary for all of them: each file is a module (one link instead of 7; CI time).
 
+// the scenario helpers of creep-core's tests, one copy for both crates
+#[path = "../../../creep-core/tests/physics/common/mod.rs"]
 mod common;
 
 mod custom_effect;
