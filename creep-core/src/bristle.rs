@@ -190,6 +190,76 @@ impl Move {
     }
 }
 
+/// How the stress of a move under [`Rule::SameCharacteristic`] depends on the layer's
+/// strengths, where the branch of the law it takes cannot change as the layer softens
+/// (tau_c1, tau_c2 falling and L_p rising with temperature, Eq. 4.3/4.4): the temperature
+/// solve of a move then needs the law only as a scalar function of T (module
+/// [`crate::thermal`], [`crate::thermal::solve_monotone`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SofteningPath {
+    /// The elastic trial stays below tau_c1: the stress (and heat) does not depend on the
+    /// strengths while the bristle stays elastic.
+    Elastic,
+    /// At or above tau_c1 and loading (|u| grows), or at tau_c2: the stress is
+    /// t dir with t = tau_c2 - max(0, tau_c2 - t0) exp(-dn / L_p) (Eq. 4.7 hardening from
+    /// the old stress t0 over the plastic slip dn = |u1| - |u0|, sliding at tau_c2 once
+    /// tau_c2 <= t0), `dir` the move's direction.
+    Hardening {
+        /// |tau| before the move, Pa.
+        t0: f64,
+        /// |u1| - |u0|, m.
+        dn: f64,
+        /// Unit direction of the new stress.
+        dir: [f64; 2],
+    },
+}
+
+impl Move {
+    /// The rigid slip of the move, m.
+    pub fn du(&self) -> [f64; 2] {
+        self.du
+    }
+
+    /// The displacement after the move, m.
+    pub fn u1(&self) -> [f64; 2] {
+        self.u1
+    }
+
+    /// |tau| before the move, Pa.
+    pub fn t0(&self) -> f64 {
+        self.t0
+    }
+
+    /// The branch of [`update_move`] that the move of bristle `s` (its state before the
+    /// move, the same as for [`Move::new`]) takes with the material `m` at the lowest
+    /// temperature of a solve, if it is one that softening cannot change (see
+    /// [`SofteningPath`]); None otherwise (unloading from the plastic branch, a trial that
+    /// crosses the yield surface, a perfectly plastic or unloaded layer).
+    pub fn softening_path(
+        &self,
+        s: &BristleState,
+        dtau: [f64; 2],
+        m: &Material,
+    ) -> Option<SofteningPath> {
+        if m.tc2.is_nan() || m.tc2 <= 0.0 || m.tc2 - m.tc1 <= 1e-12 * m.tc2 {
+            return None;
+        }
+        let t0 = self.t0;
+        let dn = self.n1 - self.n0;
+        if t0 >= m.tc2 || (t0 >= m.tc1 && dn >= 0.0) {
+            return Some(SofteningPath::Hardening {
+                t0,
+                dn,
+                dir: self.dir,
+            });
+        }
+        if t0 < m.tc1 && norm([s.tau[0] + dtau[0], s.tau[1] + dtau[1]]) <= m.tc1 {
+            return Some(SofteningPath::Elastic);
+        }
+        None
+    }
+}
+
 /// [`update`] under [`Rule::SameCharacteristic`] with the move's material-independent
 /// parts `mv` (from [`Move::new`] on the same state `s`): the same operations.
 #[inline]

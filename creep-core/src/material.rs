@@ -250,6 +250,23 @@ impl Resolved {
     }
 }
 
+impl Resolved {
+    /// True if the layer only softens as it heats (tau_c1, tau_c2 fall and L_p rises with
+    /// T, tau_c1 no slower than tau_c2 so that the hardening span stays open, L_e does not
+    /// depend on T): the Voce law with temperature, no Coulomb bound. Then a
+    /// bristle that is elastic, hardening or sliding at the lowest temperature of its solve
+    /// stays so along the solve's path ([`crate::bristle::SofteningPath`]).
+    pub(crate) fn monotone_softening(&self) -> bool {
+        self.temperature
+            && self.plastic
+            && !self.coulomb
+            && self.tc1_t >= self.tc2_t
+            && self.tc2_t >= 0.0
+            && self.lp_t >= 0.0
+            && self.le_t == 0.0
+    }
+}
+
 /// The layer's material alone at normal stress `p` (Pa) and temperature `t` (degC), from
 /// the configuration's parameters and effects (Eq. 4.3, 4.4; formula effects not applied).
 pub fn layer_material(cfg: &Config, p: f64, t: f64) -> Material {
@@ -275,7 +292,7 @@ pub fn layer_material(cfg: &Config, p: f64, t: f64) -> Material {
 /// by its Taylor polynomial to degree 13 (truncation below 1e-17; the constants and scheme
 /// of wide's `f64x2::exp`). Arguments outside +-700 take the scalar exp.
 #[inline(always)]
-fn exp_pair(a: f64, b: f64) -> (f64, f64) {
+pub(crate) fn exp_pair(a: f64, b: f64) -> (f64, f64) {
     use wide::f64x2;
     if !(a.abs() < 700.0 && b.abs() < 700.0) {
         return (a.exp(), b.exp());
@@ -301,6 +318,13 @@ fn exp_pair(a: f64, b: f64) -> (f64, f64) {
     let pow2 =
         |t: f64| f64::from_bits(t.to_bits().wrapping_sub(SHIFT.to_bits()).wrapping_add(1023) << 52);
     (e[0] * pow2(tt[0]), e[1] * pow2(tt[1]))
+}
+
+/// exp(x) by [`exp_pair`]'s inlined polynomial (one lane used): cheaper than a call to the
+/// C library's exp in the scalar temperature solve.
+#[inline(always)]
+pub(crate) fn exp_fast(x: f64) -> f64 {
+    exp_pair(x, 0.0).0
 }
 
 #[cfg(test)]

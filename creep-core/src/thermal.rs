@@ -402,6 +402,67 @@ pub fn solve_from_predictor<S: Copy>(
     None
 }
 
+/// The root of T = t_hist + self_c q(T) (Eq. 4.35) where g(T) = t_hist + self_c q(T) - T
+/// falls strictly, as for a bristle that softens as it heats
+/// ([`crate::bristle::SofteningPath`]) and whose heat falls with T or rises more slowly than
+/// 1 / self_c: then the root is unique, below t_hist + self_c q_max. `q_of(T)` returns
+/// (q, dq/dT) of the law as a scalar function of T (cheap: no bristle state); (`q0`, `dq0`)
+/// are its values at t_hist, `q_max` a bound of q over the bracket. The caller must know that
+/// g falls on the whole bracket. Safeguarded Newton (bisection where a step
+/// leaves the bracket) until a Newton step is shorter than `tol`; that step is taken without
+/// a further evaluation (the residual after it is of the order of the step squared times
+/// g'').
+///
+/// Returns the root and the temperature at which `q_of` was last evaluated (t_hist if it was
+/// not): the caller extrapolates its own state from there over the last step. None if
+/// self_c dq/dT >= 1 where it is evaluated, or after 50 iterations.
+pub fn solve_monotone(
+    t_hist: f64,
+    self_c: f64,
+    (q0, dq0): (f64, f64),
+    q_max: f64,
+    tol: f64,
+    q_of: impl Fn(f64) -> (f64, f64),
+) -> Option<(f64, f64)> {
+    let g0 = self_c * q0;
+    if self_c * dq0 >= 1.0 {
+        return None;
+    }
+    if g0 < tol {
+        return Some((t_hist, t_hist));
+    }
+    let (mut lo, mut hi) = (t_hist, t_hist + self_c * q_max.max(q0));
+    // the first step from t_hist needs no evaluation: (q0, dq0) are known there
+    let (mut t, mut g, mut dq) = (t_hist, g0, dq0);
+    for _ in 0..50 {
+        if self_c * dq >= 1.0 {
+            return None;
+        }
+        if g > 0.0 {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        let step = -g / (self_c * dq - 1.0);
+        let next = t + step;
+        if step.abs() < tol && next >= lo && next <= hi {
+            return Some((next, t));
+        }
+        t = if next > lo && next < hi {
+            next
+        } else {
+            0.5 * (lo + hi)
+        };
+        let (q, d) = q_of(t);
+        g = t_hist + self_c * q - t;
+        dq = d;
+        if hi - lo < tol && g.abs() < tol {
+            return Some((t, t));
+        }
+    }
+    None
+}
+
 /// Width of a bracket, in tolerances, below which the root's state is interpolated between
 /// the bracket's ends instead of evaluated (the interpolation error is far below the tolerance
 /// there: the residual is linear over a few kelvin).
@@ -475,6 +536,50 @@ mod tests {
                 acc[j] = decay[j] * acc[j] + q * gain[j];
             }
         }
+    }
+
+    /// Newton on a scalar law finds the root that bisection finds, for heat falling with T
+    /// and for heat rising more slowly than 1 / self_c, within the tolerance.
+    #[test]
+    fn solve_monotone_finds_the_unique_root() {
+        let (t_hist, self_c, tol) = (40.0, 2e-6, 1e-3);
+        for (q0, c) in [
+            (5e6, 0.03),
+            (5e6, 0.0025),
+            (2e7, 0.05),
+            (5e6, -2e-3),
+            (1e3, 0.03),
+        ] {
+            // q = q0 exp(-c (T - t_hist)); c < 0: rising, self_c dq/dT = 2e-5 at t_hist
+            let q_of = |t: f64| {
+                let q = q0 * (-c * (t - t_hist)).exp();
+                (q, -c * q)
+            };
+            let g = |t: f64| t_hist + self_c * q_of(t).0 - t;
+            let (root, _) = solve_monotone(
+                t_hist,
+                self_c,
+                q_of(t_hist),
+                if c < 0.0 { 10.0 * q0 } else { q0 },
+                tol,
+                q_of,
+            )
+            .expect("root");
+            let (mut lo, mut hi) = (t_hist, t_hist + self_c * 10.0 * q0);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if g(mid) > 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            assert!(g(root).abs() < tol, "q0 {q0} c {c}: g = {}", g(root));
+            assert!((root - lo).abs() < tol, "q0 {q0} c {c}: {root} vs {lo}");
+        }
+        // heat that rises as fast as 1 / self_c: no unique root guaranteed, refused
+        let steep = |t: f64| (1e6 + 1e6 * (t - t_hist), 1e6);
+        assert!(solve_monotone(t_hist, 1e-6, steep(t_hist), 1e9, tol, steep).is_none());
     }
 
     #[test]

@@ -1,4 +1,4 @@
-//! Serialized FMU states of format version 2 written by an earlier build (main at b6bbfee, before the variables were declared once) load, serialize to the same bytes and continue bit for bit.
+//! Serialized FMU states of format version 2 written by an earlier build (main at b6bbfee, before the variables were declared once) load, serialize to the same bytes and continue as that build did.
 
 use ecf_contact::instance::{Instance, Status};
 use ecf_contact::state;
@@ -9,7 +9,12 @@ use ecf_contact::vars::{self, Out};
 const STATE_V2: &[u8] = include_bytes!("data/state_v2.bin");
 
 /// That build's outputs (f64 bits, in the order of the outputs) after each of 4 steps of
-/// 0.5 ms from the state, with cx = 0.02, 0.04, 0.06, 0.08.
+/// 0.5 ms from the state, with cx = 0.02, 0.04, 0.06, 0.08. The build continued them bit
+/// for bit until the scalar temperature solve of a softening layer (creep-core
+/// engine/softening.rs) replaced the general one for most moves; both stop within the same
+/// tolerance (1e-4 relative change of the softening factors), so the continuation is now
+/// compared within 2e-4 (plus 1 N, 1 N m, 1 W, 1 mK), as creep-core's test of the two solves
+/// does. A state read wrongly would be off by far more.
 const EXPECTED: [[u64; 13]; 4] = [
     [
         0x40dc700e7fda2c5f,
@@ -82,7 +87,7 @@ fn vr(name: &str) -> u32 {
 }
 
 #[test]
-fn a_version_2_state_of_an_earlier_build_loads_and_continues_bit_for_bit() {
+fn a_version_2_state_of_an_earlier_build_loads_and_continues_as_it_did() {
     let snap = state::deserialize(STATE_V2).expect("the version 2 state loads");
     assert_eq!(
         state::serialize(&snap),
@@ -99,12 +104,16 @@ fn a_version_2_state_of_an_earlier_build_loads_and_continues_bit_for_bit() {
         assert_eq!(i.do_step(i.time(), 5e-4), Status::Ok);
         for (o, w) in Out::ALL.iter().zip(want) {
             let x = i.get_real(vr(o.name())).expect("output");
-            assert_eq!(
-                x.to_bits(),
-                *w,
-                "step {k}: {} = {x}, expected {}",
-                o.name(),
-                f64::from_bits(*w)
+            let want = f64::from_bits(*w);
+            let (x0, w0, floor) = match o.name() {
+                "T_max" | "T_mean" => (x - 20.0, want - 20.0, 1e-3),
+                name if name.starts_with("frac") => (x, want, 0.02),
+                _ => (x, want, 1.0),
+            };
+            assert!(
+                (x0 - w0).abs() <= 2e-4 * x0.abs().max(w0.abs()) + floor,
+                "step {k}: {} = {x}, expected {want}",
+                o.name()
             );
         }
     }

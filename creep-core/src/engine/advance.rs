@@ -11,17 +11,17 @@ const FAC_CACHE: usize = 4;
 
 /// Per-sub-step kinematic context of one strip.
 pub(super) struct Kin {
-    h: f64,
-    dist: f64,
-    cx: f64,
-    cy: f64,
-    cs: f64,
-    lx: f64,
-    ly: f64,
-    ls: f64,
-    heat: bool,
-    alpha_c: f64,
-    t_bulk: f64,
+    pub(super) h: f64,
+    pub(super) dist: f64,
+    pub(super) cx: f64,
+    pub(super) cy: f64,
+    pub(super) cs: f64,
+    pub(super) lx: f64,
+    pub(super) ly: f64,
+    pub(super) ls: f64,
+    pub(super) heat: bool,
+    pub(super) alpha_c: f64,
+    pub(super) t_bulk: f64,
 }
 
 impl Contact {
@@ -71,6 +71,11 @@ impl Contact {
         acc: &mut [f64; N_KERNEL],
         fac: &StepFactors,
     ) -> f64 {
+        if self.softening_fast && k.heat {
+            if let Some(q) = self.update_softening(k, np, [x, y], s, acc, fac) {
+                return q;
+            }
+        }
         let d = k.dist;
         let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
         // Temperature from the heat history (all but the newest interval), Eq. 4.35.

@@ -26,6 +26,7 @@ mod advance;
 mod grid;
 pub mod io;
 mod modifiers;
+mod softening;
 mod strip;
 
 pub use crate::hertz::patch_for;
@@ -118,6 +119,10 @@ pub struct Contact {
     fstatic: [f64; 5],
     /// True if some formula uses local bristle state.
     flocal: bool,
+    /// True if moves with heat flow take the scalar temperature solve of `softening`: a
+    /// layer that only softens as it heats, the same-characteristic rule, no modifier of the
+    /// local bristle state.
+    softening_fast: bool,
 }
 
 impl Contact {
@@ -155,7 +160,7 @@ impl Contact {
             p0: 0.0,
             line,
         };
-        Ok(Contact {
+        let mut c = Contact {
             cfg: cfg.clone(),
             r: Resolved::from_config(cfg),
             kernel: Kernel::default(),
@@ -187,6 +192,7 @@ impl Contact {
             extra: Vec::new(),
             fvars: Vec::new(),
             fstatic: [1.0; 5],
+            softening_fast: false,
             flocal: cfg.formulas.iter().any(|f| f.local)
                 || cfg.custom.iter().any(|c| c.effect.uses_local_state()),
             t_tol: {
@@ -198,7 +204,9 @@ impl Contact {
                     0.1
                 }
             },
-        })
+        };
+        c.set_softening_solve(true);
+        Ok(c)
     }
 
     /// The configuration.
@@ -532,6 +540,19 @@ impl Contact {
         } else {
             Scheme::Cells
         };
+    }
+
+    /// Switches the scalar temperature solve of module `softening` off (every move then takes
+    /// the general solve). For tests that compare both; returns whether it applied before.
+    #[doc(hidden)]
+    pub fn set_softening_solve(&mut self, on: bool) -> bool {
+        let was = self.softening_fast;
+        let r = &self.r;
+        self.softening_fast = on
+            && r.monotone_softening()
+            && r.rule == crate::bristle::Rule::SameCharacteristic
+            && !self.flocal;
+        was
     }
 
     /// Chooses how a step advances the bristles (default [`Scheme::CellsMarch`]).

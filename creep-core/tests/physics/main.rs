@@ -12,6 +12,7 @@ mod kalker_linear_theory;
 mod periodic_creepage;
 mod published_references;
 mod reversed_rolling;
+mod softening_solve;
 mod speed_and_load;
 mod state_and_inputs;
 mod strength_bound;

@@ -1,0 +1,158 @@
+//! The scalar temperature solve of a softening layer (engine/softening.rs) against the general solve: the same states within the solve's tolerance, steady and transient.
+
+use super::common::{preset, with_grid};
+use creep_core::{Contact, Inputs, Outputs};
+
+/// Forces and moment within `rel` of the larger magnitude (plus 1 N, 1 N m), the
+/// frictional power within `rel`, temperature rises within `rel` (plus 1 mK).
+fn agree(what: &str, a: &Outputs, b: &Outputs, rel: f64) {
+    for (name, x, y, floor) in [
+        ("fx", a.fx, b.fx, 1.0),
+        ("fy", a.fy, b.fy, 1.0),
+        ("mz", a.mz, b.mz, 1.0),
+        ("p_fric", a.p_fric, b.p_fric, 1.0),
+        ("t_max", a.t_max - 20.0, b.t_max - 20.0, 1e-3),
+        ("t_mean", a.t_mean - 20.0, b.t_mean - 20.0, 1e-3),
+    ] {
+        assert!(
+            (x - y).abs() <= rel * x.abs().max(y.abs()) + floor,
+            "{what}: {name} {x} (scalar solve) vs {y} (general solve)"
+        );
+    }
+    for (name, x, y) in [
+        ("frac_elastic", a.frac_elastic, b.frac_elastic),
+        ("frac_sliding", a.frac_sliding, b.frac_sliding),
+    ] {
+        // a bristle at a regime boundary may fall on either side within the tolerance
+        assert!((x - y).abs() <= 0.02, "{what}: {name} {x} vs {y}");
+    }
+}
+
+/// The softening-layer presets take the scalar solve, and the tolerance of both solves
+/// (1e-4 relative change of the softening factors) bounds their difference: steady curves
+/// with longitudinal, lateral and spin creepage at two speeds agree within 2e-4.
+#[test]
+fn scalar_solve_agrees_with_the_general_solve_in_steady_state() {
+    for name in ["table4.1", "dry", "wet", "dry_sanded", "twin_disc"] {
+        let cfg = with_grid(preset(name), 40, 11);
+        let mut fast = Contact::new(&cfg).unwrap();
+        let mut general = Contact::new(&cfg).unwrap();
+        assert!(
+            general.set_softening_solve(false),
+            "{name}: the scalar solve should apply to this preset"
+        );
+        for v in [5.0, 30.0] {
+            for (cx, cy, spin) in [
+                (0.0005, 0.0, 0.0),
+                (0.003, 0.0, 0.0),
+                (0.02, 0.0, 0.0),
+                (0.1, 0.0, 0.0),
+                (0.35, 0.0, 0.0),
+                (0.01, 0.004, 0.0),
+                (0.02, -0.01, 1.5),
+            ] {
+                let i = Inputs {
+                    cx,
+                    cy,
+                    spin,
+                    v,
+                    fn_n: 110e3,
+                    ..Inputs::default()
+                };
+                let a = fast.steady(&i).unwrap();
+                let b = general.steady(&i).unwrap();
+                agree(&format!("{name} {i:?}"), &a, &b, 2e-4);
+            }
+        }
+    }
+}
+
+/// Transient steps of several lengths with varying creepage, speed and load: the two
+/// solves stay together (their differences do not grow over 40 steps).
+#[test]
+fn scalar_solve_agrees_with_the_general_solve_in_transient_steps() {
+    for name in ["table4.1", "dry"] {
+        let cfg = with_grid(preset(name), 30, 9);
+        let mut fast = Contact::new(&cfg).unwrap();
+        let mut general = Contact::new(&cfg).unwrap();
+        general.set_softening_solve(false);
+        let i0 = Inputs {
+            cx: 0.01,
+            v: 5.0,
+            fn_n: 110e3,
+            ..Inputs::default()
+        };
+        fast.steady(&i0).unwrap();
+        general.steady(&i0).unwrap();
+        let mut k = 0u32;
+        for (dt, v) in [(2e-6, 5.0), (3.3e-4, 5.0), (1e-4, 20.0), (7e-5, 12.0)] {
+            for _ in 0..10 {
+                k += 1;
+                let i = Inputs {
+                    cx: 0.01 + 0.1 * (k as f64 * 0.7).sin().abs(),
+                    cy: 0.001 * (k as f64).cos(),
+                    v,
+                    fn_n: 100e3 + 2e3 * k as f64,
+                    ..Inputs::default()
+                };
+                let a = fast.step(dt, &i).unwrap();
+                let b = general.step(dt, &i).unwrap();
+                agree(&format!("{name} step {k} dt {dt}"), &a, &b, 2e-4);
+            }
+        }
+    }
+}
+
+/// Without temperature there is nothing to solve: the scalar path does not apply (and a
+/// layer whose tau_c1 softens more slowly than tau_c2 is left to the general solve, whose
+/// hardening span may close as it heats).
+#[test]
+fn scalar_solve_applies_only_to_a_softening_layer_with_temperature() {
+    let mut cold = preset("dry");
+    cold.effects.remove(creep_core::Effect::Temperature);
+    assert!(!Contact::new(&cold).unwrap().set_softening_solve(false));
+    let mut closing = preset("dry");
+    closing
+        .params
+        .set_by_name("tau_c1_T_per_C", 0.001)
+        .expect("parameter");
+    assert!(!Contact::new(&closing).unwrap().set_softening_solve(false));
+    assert!(!Contact::new(&preset("fastsim"))
+        .unwrap()
+        .set_softening_solve(false));
+}
+
+/// Formula effects of the operating point (here a data column) scale the strengths by
+/// constants: the scalar solve applies and agrees with the general one. A formula of the
+/// local temperature does not keep the layer's law a known function of T: general solve.
+#[test]
+fn scalar_solve_with_formula_effects_of_the_operating_point() {
+    let config = |factor: &str| {
+        let text = format!(
+            r#"{{"preset": "dry", "grid": {{"nx": 30, "ny": 9}},
+            "formula_effects": [{{"name": "f", "target": "tau_c2", "factor": "{factor}",
+            "params": {{"k": {{"value": 0.3, "min": -1, "max": 1}}}}}}]}}"#
+        );
+        creep_core::Config::from_json_str(&text, "test").expect("config")
+    };
+    let cfg = config("1 - k * (humidity - 50) / 50");
+    let mut fast = Contact::new(&cfg).unwrap();
+    let mut general = Contact::new(&cfg).unwrap();
+    assert!(general.set_softening_solve(false));
+    for (h, cx) in [(20.0, 0.004), (50.0, 0.03), (80.0, 0.2)] {
+        let cols = [("humidity".to_string(), h)];
+        fast.set_extra(&cols).unwrap();
+        general.set_extra(&cols).unwrap();
+        let i = Inputs {
+            cx,
+            v: 10.0,
+            fn_n: 110e3,
+            ..Inputs::default()
+        };
+        let a = fast.steady(&i).unwrap();
+        let b = general.steady(&i).unwrap();
+        agree(&format!("humidity {h} cx {cx}"), &a, &b, 2e-4);
+    }
+    let local = config("1 - k * (T_C - 20) / 500");
+    assert!(!Contact::new(&local).unwrap().set_softening_solve(false));
+}
