@@ -251,6 +251,13 @@ impl Resolved {
 }
 
 impl Resolved {
+    /// The largest temperature coefficient of tau_c1, tau_c2, L_p (1/K): the release
+    /// damping's gain (docs/model.md, section 6).
+    #[inline]
+    pub(crate) fn cmax_t(&self) -> f64 {
+        self.tc1_t.max(self.tc2_t).max(self.lp_t)
+    }
+
     /// True if the layer only softens as it heats (tau_c1, tau_c2 fall and L_p rises with
     /// T, tau_c1 no slower than tau_c2 so that the hardening span stays open, L_e does not
     /// depend on T): the Voce law with temperature, no Coulomb bound. Then a

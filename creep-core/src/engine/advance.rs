@@ -22,6 +22,9 @@ pub(super) struct Kin {
     pub(super) heat: bool,
     pub(super) alpha_c: f64,
     pub(super) t_bulk: f64,
+    /// alpha_c 2 sqrt(h): the flash temperature per heat density of the sub-step's own
+    /// interval (Eq. 4.35's first term), 0 without heat flow.
+    pub(super) self_c: f64,
 }
 
 impl Contact {
@@ -45,6 +48,7 @@ impl Contact {
             self.r.lambda_r,
             self.r.kappa_r,
         );
+        let alpha_c = alpha * thermal::flash_factor(self.r.lambda_w, self.r.kappa_w);
         Kin {
             h,
             dist,
@@ -55,8 +59,9 @@ impl Contact {
             ly: self.flex.1,
             ls: self.flex.2,
             heat,
-            alpha_c: alpha * thermal::flash_factor(self.r.lambda_w, self.r.kappa_w),
+            alpha_c,
             t_bulk: i.t_bulk,
+            self_c: if heat { alpha_c * 2.0 * h.sqrt() } else { 0.0 },
         }
     }
 
@@ -87,11 +92,7 @@ impl Contact {
         } else {
             k.t_bulk
         };
-        let self_c = if k.heat {
-            k.alpha_c * 2.0 * k.h.sqrt()
-        } else {
-            0.0
-        };
+        let self_c = k.self_c;
         let old = *s;
         // displacements and stresses are far from overflow: sqrt instead of hypot
         let u_abs = (old.u[0] * old.u[0] + old.u[1] * old.u[1]).sqrt();
@@ -109,7 +110,7 @@ impl Contact {
         // margin (gain < 0.8), damped only for tiny sub-steps (docs/model.md, section 6).
         let release_ref: std::cell::Cell<Option<[f64; 2]>> = std::cell::Cell::new(None);
         let theta = if k.heat && self.r.temperature {
-            let cmax = self.r.tc1_t.max(self.r.tc2_t).max(self.r.lp_t);
+            let cmax = self.r.cmax_t();
             let t0 = (old.tau[0] * old.tau[0] + old.tau[1] * old.tau[1])
                 .sqrt()
                 .max(1.0);

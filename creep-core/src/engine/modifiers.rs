@@ -160,6 +160,20 @@ impl Contact {
         m
     }
 
+    /// The material at temperature `t` with the factors of the formula and custom effects that
+    /// depend on the operating point only (all of them unless some reads the local bristle
+    /// state): the same numbers as [`Self::material`] then (a factor of 1 changes nothing).
+    #[inline(always)]
+    pub(super) fn material_static(&self, np: &NodeP, t: f64) -> Material {
+        let mut m = self.r.material_base(np, t);
+        let f = &self.fstatic;
+        m.tc2 *= f[1];
+        m.tc1 = (m.tc1 * f[0]).min(m.tc2);
+        m.lp *= f[3];
+        m.le *= f[2];
+        m
+    }
+
     /// Full material at temperature `t` (Eq. 4.3, 4.4) with the formula effects at a bristle
     /// with displacement |u| = `u` (m) and rigid slip speed `slip` (m/s).
     #[inline]

@@ -43,20 +43,18 @@ impl Contact {
         } else {
             k.t_bulk
         };
-        let self_c = k.alpha_c * 2.0 * k.h.sqrt();
+        let self_c = k.self_c;
         if self_c.is_nan() || self_c <= 0.0 {
             return None;
         }
         let old = *s;
+        let mv = Move::new(&old, du);
         // the release weight theta of the general move (docs/model.md, section 6)
-        let cmax = self.r.tc1_t.max(self.r.tc2_t).max(self.r.lp_t);
-        let t0 = (old.tau[0] * old.tau[0] + old.tau[1] * old.tau[1])
-            .sqrt()
-            .max(1.0);
-        let gain = self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * cmax / k.h;
+        let t0 = mv.t0().max(1.0);
+        let gain = self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * self.r.cmax_t() / k.h;
         let theta = if gain > 0.8 { 0.8 / gain } else { 1.0 };
         // the material at t_hist (with the operating point's formula and custom factors)
-        let m_h = self.material(np, t_hist, 0.0, 0.0);
+        let m_h = self.material_static(np, t_hist);
         // flexibilities L + L_e and the elastic increment (Eq. 4.21); L_e does not depend on T
         let lxe = k.lx + m_h.le;
         let lye = k.ly + m_h.le;
@@ -65,7 +63,6 @@ impl Contact {
             d * (k.cx / lxe - k.cs * y / lse),
             d * (k.cy / lye + k.cs * x / lse),
         ];
-        let mv = Move::new(&old, du);
         let path = mv.softening_path(&old, dtau, &m_h)?;
         let (mut ns, q) = self.solve_on_path(
             k,
@@ -128,7 +125,7 @@ impl Contact {
                 let tr = [old.tau[0] + dtau[0], old.tau[1] + dtau[1]];
                 let q = heat(tr, tr);
                 let t = t_hist + self_c * q;
-                let m = self.material(np, t, 0.0, 0.0);
+                let m = self.material_static(np, t);
                 let ntr = (tr[0] * tr[0] + tr[1] * tr[1]).sqrt();
                 if !(mv.t0() < m.tc1 && ntr <= m.tc1) {
                     return None;
