@@ -93,10 +93,23 @@ impl Resolved {
             let x = p * c;
             // 1 - exp(-x) loses no accuracy that matters above x = 1e-3 and exp is cheaper
             if x > 1e-3 {
-                1.0 - (-x).exp()
+                1.0 - exp_fast(-x)
             } else {
                 -(-x).exp_m1()
             }
+        }
+    }
+
+    /// ([`Self::pf`] of `c1`, of `c2`) at pressure `p`: one two-lane exponential where both
+    /// need one.
+    #[inline]
+    fn pf_pair(&self, p: f64, c1: f64, c2: f64) -> (f64, f64) {
+        let (x1, x2) = (p * c1, p * c2);
+        if self.pressure && x1 > 1e-3 && x2 > 1e-3 && x1.is_finite() && x2.is_finite() {
+            let (e1, e2) = exp_pair(-x1, -x2);
+            (1.0 - e1, 1.0 - e2)
+        } else {
+            (self.pf(p, c1), self.pf(p, c2))
         }
     }
 
@@ -164,11 +177,11 @@ impl Resolved {
             0.0
         };
         // equal coefficients share one exponential (Tab. 4.1 has three equal ones)
-        let f1 = r.pf(p, r.tc1_p);
-        let f2 = if r.tc2_p == r.tc1_p {
-            f1
+        let (f1, f2) = if r.tc2_p == r.tc1_p {
+            let f1 = r.pf(p, r.tc1_p);
+            (f1, f1)
         } else {
-            r.pf(p, r.tc2_p)
+            r.pf_pair(p, r.tc1_p, r.tc2_p)
         };
         let fp = if r.lp_p == r.tc1_p {
             f1
