@@ -272,18 +272,25 @@ impl Resolved {
     }
 
     /// True if the layer only softens as it heats (tau_c1, tau_c2 fall and L_p rises with
-    /// T, tau_c1 no slower than tau_c2 so that the hardening span stays open, L_e does not
-    /// depend on T): the Voce law with temperature, no Coulomb bound. Then a
+    /// T, L_e does not depend on T): the Voce law with temperature, no Coulomb bound. Then a
     /// bristle that is elastic, hardening or sliding at the lowest temperature of its solve
-    /// stays so along the solve's path ([`crate::bristle::SofteningPath`]).
+    /// stays so along the solve's path ([`crate::bristle::SofteningPath`]) while the
+    /// hardening span tau_c2 - tau_c1 stays open (see [`Self::span_may_close`]).
     pub(crate) fn monotone_softening(&self) -> bool {
         self.temperature
             && self.plastic
             && !self.coulomb
-            && self.tc1_t >= self.tc2_t
+            && self.tc1_t >= 0.0
             && self.tc2_t >= 0.0
             && self.lp_t >= 0.0
             && self.le_t == 0.0
+    }
+
+    /// True if tau_c1 softens more slowly than tau_c2: heating then narrows the span
+    /// tau_c2 - tau_c1 until tau_c1 = tau_c2 (a perfectly plastic layer, whose law has no
+    /// hardening branch), at one temperature, above which it stays closed.
+    pub(crate) fn span_may_close(&self) -> bool {
+        self.tc1_t < self.tc2_t
     }
 }
 

@@ -86,6 +86,15 @@ impl Contact {
         Some(q)
     }
 
+    /// True if the hardening span tau_c2 - tau_c1 is closed at temperature `t` (the law
+    /// perfectly plastic there; see [`crate::material::Resolved::span_may_close`]).
+    #[cold]
+    #[inline(never)]
+    fn span_closed(&self, np: &NodeP, t: f64) -> bool {
+        let m = self.material_static(np, t);
+        m.tc2 - m.tc1 <= 1e-12 * m.tc2
+    }
+
     /// The new state and heat density of a move on a [`SofteningPath`] (see
     /// [`Contact::update_softening`]): the root of T = t_hist + self_c q(T) with q(T) the move's
     /// heat density as a scalar function of T (L_e independent of T), from the material `m_h`
@@ -244,6 +253,11 @@ impl Contact {
                     let (t, _, sl, _) = stress(root - t_hist);
                     (root, sl, t)
                 };
+                // the span closes at one temperature and stays closed above it: open at the
+                // root means open on the whole path from t_hist
+                if self.r.span_may_close() && self.span_closed(np, root) {
+                    return None;
+                }
                 let tau = [t * dir[0], t * dir[1]];
                 let r = [t_h * dir[0], t_h * dir[1]];
                 let tau_r = [
