@@ -19,7 +19,9 @@
 //! `steady`, state plumbing); [`io`] the inputs and outputs; `strip` one strip as a unit of
 //! work (its state borrowed out of the contact, the strips of a step on `threads` threads)
 //! and the cell-by-cell scheme; `advance` one bristle move, the sub-step loop and march;
-//! `grid` the integrals and fields; `modifiers` the formula and custom effects. The material law is [`crate::material`], the temperature solve and heat
+//! `grid` the integrals and fields; `modifiers` the formula and custom effects; `softening`
+//! the temperature solve of a layer that only softens as it heats (on the law's branch as a
+//! scalar function of T). The material law is [`crate::material`], the temperature solve and heat
 //! kernel [`crate::thermal`], the Hertz patch [`crate::hertz`].
 
 mod advance;
