@@ -515,12 +515,12 @@ impl Config {
                     if !v.is_object() {
                         return Err(cfg_err(src, format!("formula_effects.{}.params.{n}: expected {{\"value\": v, \"min\": lo, \"max\": hi}}", f.name)));
                     }
-                    ps.push((
-                        n.clone(),
-                        get("value", f64::NAN)?,
-                        get("min", f64::MIN)?,
-                        get("max", f64::MAX)?,
-                    ));
+                    ps.push(crate::formula::FormulaParam {
+                        name: n.clone(),
+                        value: get("value", f64::NAN)?,
+                        min: get("min", f64::MIN)?,
+                        max: get("max", f64::MAX)?,
+                    });
                 }
                 let fe = crate::formula::FormulaEffect::new(&f.name, target, &f.factor, ps)
                     .map_err(|e| cfg_err(src, e.to_string()))?;
@@ -601,7 +601,7 @@ impl Config {
             .formulas
             .iter()
             .map(|f| {
-                let ps: Map<String, Value> = f.params.iter().map(|(n, v, lo, hi)| (n.clone(), serde_json::json!({"value": v, "min": lo, "max": hi}))).collect();
+                let ps: Map<String, Value> = f.params.iter().map(|q| (q.name.clone(), serde_json::json!({"value": q.value, "min": q.min, "max": q.max}))).collect();
                 serde_json::json!({"name": f.name, "target": f.target.name(), "factor": f.source, "params": ps})
             })
             .collect();

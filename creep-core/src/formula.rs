@@ -71,6 +71,23 @@ enum Node {
     Call(String, Vec<Node>),
 }
 
+/// One parameter of a formula effect (configuration: `"params": {NAME: {"value": v, "min": lo,
+/// "max": hi}}`). Its unit is whatever the expression gives it; fits treat it as "-".
+#[derive(Clone, Debug, PartialEq)]
+pub struct FormulaParam {
+    /// Name, as the factor expression refers to it.
+    pub name: String,
+    /// Current value; finite and within [`min`, `max`] (checked by [`FormulaEffect::new`]).
+    ///
+    /// [`min`]: FormulaParam::min
+    /// [`max`]: FormulaParam::max
+    pub value: f64,
+    /// Lower bound of `value`, kept by fits (`f64::MIN` if the configuration gives none).
+    pub min: f64,
+    /// Upper bound of `value`, kept by fits (`f64::MAX` if the configuration gives none).
+    pub max: f64,
+}
+
 /// A compiled formula effect.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FormulaEffect {
@@ -80,8 +97,8 @@ pub struct FormulaEffect {
     pub target: Target,
     /// Source text of the factor.
     pub source: String,
-    /// Parameters: (name, value, min, max).
-    pub params: Vec<(String, f64, f64, f64)>,
+    /// Parameters, in the order the configuration lists them.
+    pub params: Vec<FormulaParam>,
     /// Extra (data) columns the expression uses, in variable order after the fixed ones.
     pub columns: Vec<String>,
     expr: Node,
@@ -92,7 +109,7 @@ pub struct FormulaEffect {
 struct Parser<'a> {
     s: &'a [u8],
     i: usize,
-    params: &'a [(String, f64, f64, f64)],
+    params: &'a [FormulaParam],
     columns: Vec<String>,
     local: bool,
 }
@@ -222,7 +239,7 @@ impl Parser<'_> {
                     }
                     return Ok(Node::Call(name, args));
                 }
-                if let Some(k) = self.params.iter().position(|p| p.0 == name) {
+                if let Some(k) = self.params.iter().position(|p| p.name == name) {
                     return Ok(Node::Param(k));
                 }
                 if let Some(k) = LOCAL.iter().position(|v| *v == name) {
@@ -257,11 +274,11 @@ fn uses_vars(n: &Node) -> bool {
     }
 }
 
-fn eval(n: &Node, vars: &[f64], params: &[(String, f64, f64, f64)]) -> f64 {
+fn eval(n: &Node, vars: &[f64], params: &[FormulaParam]) -> f64 {
     match n {
         Node::Num(x) => *x,
         Node::Var(i) => vars.get(*i).copied().unwrap_or(f64::NAN),
-        Node::Param(i) => params[*i].1,
+        Node::Param(i) => params[*i].value,
         Node::Neg(a) => -eval(a, vars, params),
         Node::Bin(op, a, b) => {
             let (x, y) = (eval(a, vars, params), eval(b, vars, params));
@@ -294,9 +311,15 @@ impl FormulaEffect {
         name: &str,
         target: Target,
         factor: &str,
-        params: Vec<(String, f64, f64, f64)>,
+        params: Vec<FormulaParam>,
     ) -> Result<Self> {
-        for (n, v, lo, hi) in &params {
+        for FormulaParam {
+            name: n,
+            value: v,
+            min: lo,
+            max: hi,
+        } in &params
+        {
             if !(v.is_finite() && lo <= v && v <= hi) {
                 return Err(CreepError::OutOfRange {
                     field: format!("formula_effects.{name}.params.{n}"),
@@ -352,7 +375,7 @@ impl FormulaEffect {
 
     /// Sets a parameter value (for fitting).
     pub fn set_param(&mut self, k: usize, v: f64) {
-        self.params[k].1 = v;
+        self.params[k].value = v;
     }
 }
 
@@ -366,7 +389,12 @@ mod tests {
             "h",
             Target::TauC2,
             "1 - k*(humidity - 50)/50 + 2^3^0 - -1",
-            vec![("k".into(), 0.3, 0.0, 1.0)],
+            vec![FormulaParam {
+                name: "k".into(),
+                value: 0.3,
+                min: 0.0,
+                max: 1.0,
+            }],
         )
         .unwrap();
         assert_eq!(f.columns, vec!["humidity"]);
@@ -378,7 +406,12 @@ mod tests {
             "t",
             Target::TauC1,
             "exp(-max(T_C - 20, 0) * c)",
-            vec![("c".into(), 0.01, 0.0, 1.0)],
+            vec![FormulaParam {
+                name: "c".into(),
+                value: 0.01,
+                min: 0.0,
+                max: 1.0,
+            }],
         )
         .unwrap();
         assert!(g.local);
@@ -398,8 +431,12 @@ mod tests {
                 .to_string();
             assert!(e.contains(needle), "{src}: {e}");
         }
-        assert!(
-            FormulaEffect::new("x", Target::Mu, "k", vec![("k".into(), 5.0, 0.0, 1.0)]).is_err()
-        );
+        let k = FormulaParam {
+            name: "k".into(),
+            value: 5.0,
+            min: 0.0,
+            max: 1.0,
+        };
+        assert!(FormulaEffect::new("x", Target::Mu, "k", vec![k]).is_err());
     }
 }

@@ -6,38 +6,92 @@ use crate::effects::Effect;
 use crate::hertz::Patch;
 use crate::params::P;
 
-/// Resolved SI parameters used in the inner loop.
+/// Resolved SI parameters used in the inner loop: the effect switches of the configuration
+/// and the registry's parameters ([`crate::params`], display units there) converted to SI.
+///
+/// The layer's laws (seed Eq. 4.3 for tau_c1, tau_c2; Eq. 4.4 for L_p, L_e), with the
+/// pressure factor [`Resolved::pf`] and the temperature factor [`Resolved::tf`]:
+/// tau_ci(p, T) = tau_ci,0 pf(p, X_p) tf(T, X_T) (tau_c1 capped at tau_c2) and
+/// L(p, T) = L_0 / (pf(p, X_p) tf(T, X_T)) for L = L_p, L_e: strengths rise and compliances
+/// fall as the layer is compressed, and the reverse as it heats.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Resolved {
+    /// Effect `coulomb`: FASTSIM's bound |tau| <= mu p replaces the layer's strengths
+    /// (tau_c1 = tau_c2 = mu p).
     pub coulomb: bool,
+    /// Effect `voce_plasticity`: Voce hardening from tau_c1 to tau_c2 (Eq. 4.2); with neither
+    /// this nor `coulomb` the bristles are purely elastic (Kalker's linear theory).
     pub plastic: bool,
+    /// Effect `layer_elasticity`: the layer's compliance L_e in series with the bodies'
+    /// (L_k + L_e, Eq. 4.21); off: L_e = 0.
     pub layer_el: bool,
+    /// Effect `pressure_dependence`: the pressure factors of Eq. 4.3, 4.4 (off: 1).
     pub pressure: bool,
+    /// Effect `temperature`: heat, flash temperature (Eq. 4.22-4.35) and the temperature
+    /// factors of Eq. 4.3, 4.4 (off: 1, bristles at the bulk temperature).
     pub temperature: bool,
+    /// Effect `transient`: the bristle grid persists between steps (off: every step is the
+    /// quasi-steady state of its inputs).
     pub transient: bool,
+    /// Effect `surface_time_flash`: Eq. 4.34 over the wheel surface's own time x / v_w.
     pub surface_time: bool,
+    /// Unloading rule of the bristle law: elastic unloading with effect `elastic_unloading`
+    /// or `coulomb` (FASTSIM's radial return), else the seed's same characteristic.
     pub rule: Rule,
+    /// Configuration `bound` = parabolic: the Coulomb bound follows Kalker's parabolic
+    /// pressure (same total force) instead of the elliptic Hertz pressure.
     pub parabolic: bool,
+    /// Coulomb friction coefficient mu of the bound |tau| <= mu p, -.
     pub mu: f64,
+    /// Shear modulus G of wheel and rail, Pa (Kalker's flexibilities L_x, L_y, L_s).
     pub g: f64,
+    /// Poisson's ratio nu of wheel and rail, - (Kalker's coefficients).
     pub nu: f64,
+    /// L_e,0: inverted elastic stiffness of the layer at full compression and T0 (its
+    /// minimum), m/Pa (Eq. 4.4).
     pub le0: f64,
+    /// Pressure coefficient X_p of L_e, 1/Pa (inf: no pressure dependence) (Eq. 4.4).
     pub le_p: f64,
+    /// Temperature coefficient X_T of L_e, 1/K (Eq. 4.4).
     pub le_t: f64,
+    /// L_p,0: plasticity factor (displacement scale of Voce hardening) at full compression
+    /// and T0 (its minimum), m (Eq. 4.4).
     pub lp0: f64,
+    /// Pressure coefficient X_p of L_p, 1/Pa (Eq. 4.4).
     pub lp_p: f64,
+    /// Temperature coefficient X_T of L_p, 1/K (Eq. 4.4).
     pub lp_t: f64,
+    /// tau_c1,0: first critical shear stress (yield stress) of the layer at full compression
+    /// and T0 (its maximum), Pa (Eq. 4.3).
     pub tc10: f64,
+    /// Pressure coefficient X_p of tau_c1, 1/Pa (Eq. 4.3).
     pub tc1_p: f64,
+    /// Temperature coefficient X_T of tau_c1, 1/K (Eq. 4.3).
     pub tc1_t: f64,
+    /// tau_c2,0: second critical shear stress (shear strength) of the layer at full
+    /// compression and T0 (its maximum), Pa (Eq. 4.3).
     pub tc20: f64,
+    /// Pressure coefficient X_p of tau_c2, 1/Pa (Eq. 4.3).
     pub tc2_p: f64,
+    /// Temperature coefficient X_T of tau_c2, 1/K (Eq. 4.3).
     pub tc2_t: f64,
+    /// Reference temperature T0 of the material laws, degC (Eq. 4.3, 4.4; not the bulk
+    /// temperature T_B, which is an input).
     pub t0: f64,
+    /// Thermal conductivity lambda_w of the wheel, W/(m K) (heat partition Eq. 4.30, 4.31;
+    /// flash factor sqrt(kappa_w)/(lambda_w sqrt(pi)) of Eq. 4.34).
     pub lambda_w: f64,
+    /// Thermal diffusivity kappa_w of the wheel, m^2/s (Eq. 4.31, Péclet condition Eq. 4.33,
+    /// Eq. 4.34).
     pub kappa_w: f64,
+    /// Thermal conductivity lambda_r of the rail, W/(m K) (heat partition Eq. 4.31).
     pub lambda_r: f64,
+    /// Thermal diffusivity kappa_r of the rail, m^2/s (Eq. 4.31, Péclet condition Eq. 4.33).
     pub kappa_r: f64,
+    /// k_q: fraction of the work dissipated in the layer that becomes heat, - (Eq. 4.29): a
+    /// bristle's heat density (both bodies, before the partition) is
+    /// q = k_q tau . (du - du_e) / h, W/m^2, du_e the elastic part of its displacement
+    /// increment du over the sub-step h.
     pub kq: f64,
 }
 
@@ -85,6 +139,9 @@ impl Resolved {
     }
 
     /// Pressure factor 1 - exp(-p c) of Eq. 4.3/4.4 (1 when the effect is off or c = inf).
+    /// `p`: normal stress, Pa; `c`: the pressure coefficient X_p of one material function
+    /// (`tc1_p`, `tc2_p`, `lp_p` or `le_p`), 1/Pa. In [0, 1]: the strengths tau_c1, tau_c2
+    /// are multiplied by it, the compliances L_p, L_e divided.
     #[inline]
     pub(crate) fn pf(&self, p: f64, c: f64) -> f64 {
         if !self.pressure || c.is_infinite() {
@@ -114,6 +171,9 @@ impl Resolved {
     }
 
     /// Temperature factor exp(-(T - T0) c) of Eq. 4.3/4.4 (1 when the effect is off).
+    /// `t`: temperature T, degC; `c`: the temperature coefficient X_T of one material
+    /// function (`tc1_t`, `tc2_t`, `lp_t` or `le_t`), 1/K. Below 1 above T0: the strengths
+    /// are multiplied by it, the compliances divided.
     #[inline]
     pub(crate) fn tf(&self, t: f64, c: f64) -> f64 {
         if !self.temperature || c == 0.0 {

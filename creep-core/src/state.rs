@@ -10,7 +10,7 @@
 //! from another configuration or a corrupt buffer is refused with a message, never misread.
 
 use crate::bristle::{BristleState, Regime};
-use crate::engine::{Inputs, Outputs};
+use crate::engine::{Inputs, Outputs, OwnedRawState};
 use crate::error::{CreepError, Result};
 use crate::model::Model;
 use crate::thermal::N_KERNEL;
@@ -122,28 +122,28 @@ impl Model {
                 w.b(1);
             }
             Model::Bristle(c) => {
-                let (time, inputs, head, phase, st, acc, init, out) = c.raw_state();
-                w.f(time);
-                put_inputs(&mut w, &inputs);
-                put_outputs(&mut w, &out);
-                w.b(init as u8 | (c.reversed() as u8) << 1);
+                let s = c.raw_state();
+                w.f(s.time);
+                put_inputs(&mut w, &s.inputs);
+                put_outputs(&mut w, &s.out);
+                w.b(s.initialized as u8 | (s.reversed as u8) << 1);
                 let (nx, ny) = c.grid_size();
                 w.u(nx as u32);
                 w.u(ny as u32);
                 w.u(N_KERNEL as u32);
-                for h in head {
+                for h in s.head {
                     w.u(*h as u32);
                 }
-                for p in phase {
+                for p in s.phase {
                     w.f(*p);
                 }
-                for s in st {
-                    for x in [s.u[0], s.u[1], s.tau[0], s.tau[1], s.sh, s.temp, s.q] {
+                for b in s.st {
+                    for x in [b.u[0], b.u[1], b.tau[0], b.tau[1], b.sh, b.temp, b.q] {
                         w.f(x);
                     }
-                    w.b(s.regime as u8);
+                    w.b(b.regime as u8);
                 }
-                for a in acc {
+                for a in s.acc {
                     for x in a {
                         w.f(*x);
                     }
@@ -271,7 +271,17 @@ impl Model {
                         data.len() - r.p
                     )));
                 }
-                c.set_raw_state(time, inputs, head, phase, st, acc, init, out, reversed)?;
+                c.set_raw_state(OwnedRawState {
+                    time,
+                    inputs,
+                    head,
+                    phase,
+                    st,
+                    acc,
+                    initialized: init,
+                    out,
+                    reversed,
+                })?;
             }
         }
         Ok(())

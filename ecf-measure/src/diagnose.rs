@@ -17,7 +17,7 @@ use crate::measure::{cv_rmse_pct, Dataset};
 use creep_core::config::{Config, ModelKind};
 use creep_core::effects::{self, Effect};
 use creep_core::error::Result;
-use creep_core::formula::{FormulaEffect, Target};
+use creep_core::formula::{FormulaEffect, FormulaParam, Target};
 use creep_core::params::P;
 
 /// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
@@ -444,7 +444,13 @@ pub fn diagnose_with(
                 progress(&format!("formula on {} ({})", cr.variable, t.name()));
                 let name = format!("{}_by_{}", t.name(), cr.variable);
                 let factor = format!("exp(k * ({} - {mean}) / {sd})", cr.variable);
-                let fe = FormulaEffect::new(&name, t, &factor, vec![("k".into(), 0.0, -3.0, 3.0)])?;
+                let k = FormulaParam {
+                    name: "k".into(),
+                    value: 0.0,
+                    min: -3.0,
+                    max: 3.0,
+                };
+                let fe = FormulaEffect::new(&name, t, &factor, vec![k])?;
                 let mut c = cfg.clone();
                 c.formulas.push(fe);
                 let mut free = base_free.clone();

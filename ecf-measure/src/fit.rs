@@ -50,7 +50,7 @@ impl FreeParam {
             FreeParam::Builtin(p) => spec(p).name.to_string(),
             FreeParam::Formula { effect, param } => format!(
                 "{}.{}",
-                cfg.formulas[effect].name, cfg.formulas[effect].params[param].0
+                cfg.formulas[effect].name, cfg.formulas[effect].params[param].name
             ),
             FreeParam::Custom { effect, param } => format!(
                 "{}.{}",
@@ -63,7 +63,7 @@ impl FreeParam {
     pub fn get(&self, cfg: &Config) -> f64 {
         match *self {
             FreeParam::Builtin(p) => cfg.params.get(p),
-            FreeParam::Formula { effect, param } => cfg.formulas[effect].params[param].1,
+            FreeParam::Formula { effect, param } => cfg.formulas[effect].params[param].value,
             FreeParam::Custom { effect, param } => cfg.custom[effect].params[param],
         }
     }
@@ -73,7 +73,7 @@ impl FreeParam {
             FreeParam::Builtin(p) => cfg.params.bounds(p),
             FreeParam::Formula { effect, param } => {
                 let q = &cfg.formulas[effect].params[param];
-                (q.2, q.3)
+                (q.min, q.max)
             }
             FreeParam::Custom { effect, param } => cfg.custom[effect].bounds[param],
         }
@@ -86,7 +86,7 @@ impl FreeParam {
             FreeParam::Builtin(p) => (spec(p).min, spec(p).max),
             FreeParam::Formula { effect, param } => {
                 let q = &cfg.formulas[effect].params[param];
-                (q.2, q.3)
+                (q.min, q.max)
             }
             FreeParam::Custom { effect, param } => {
                 let q = cfg.custom[effect].effect.params()[param];
@@ -107,7 +107,7 @@ impl FreeParam {
             FreeParam::Builtin(p) => cfg.params.set_bounds(p, lo, hi)?,
             FreeParam::Formula { effect, param } => {
                 let q = &mut cfg.formulas[effect].params[param];
-                (q.2, q.3) = (lo, hi);
+                (q.min, q.max) = (lo, hi);
             }
             FreeParam::Custom { effect, param } => cfg.custom[effect].bounds[param] = (lo, hi),
         }
@@ -149,7 +149,7 @@ impl FreeParam {
         let mut found = Vec::new();
         for (e, f) in cfg.formulas.iter().enumerate() {
             for (k, q) in f.params.iter().enumerate() {
-                if name == format!("{}.{}", f.name, q.0) || name == q.0 {
+                if name == format!("{}.{}", f.name, q.name) || name == q.name {
                     found.push(FreeParam::Formula {
                         effect: e,
                         param: k,
@@ -169,20 +169,20 @@ impl FreeParam {
         }
         match found.len() {
             1 => Ok(found[0]),
-            0 => {
-                Err(CreepError::Unknown {
-                    kind: "parameter".into(),
-                    name: name.into(),
-                    accepted: creep_core::params::SPECS
-                        .iter()
-                        .map(|s| s.name.to_string())
-                        .chain(cfg.formulas.iter().flat_map(|f| {
-                            f.params.iter().map(move |q| format!("{}.{}", f.name, q.0))
-                        }))
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                })
-            }
+            0 => Err(CreepError::Unknown {
+                kind: "parameter".into(),
+                name: name.into(),
+                accepted: creep_core::params::SPECS
+                    .iter()
+                    .map(|s| s.name.to_string())
+                    .chain(cfg.formulas.iter().flat_map(|f| {
+                        f.params
+                            .iter()
+                            .map(move |q| format!("{}.{}", f.name, q.name))
+                    }))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            }),
             _ => Err(CreepError::Config {
                 source_name: "--free".into(),
                 message: format!("'{name}' is ambiguous; write EFFECT.PARAM"),

@@ -153,7 +153,7 @@ fn put_config(w: &mut W, c: &Config) {
         for f in &c.formulas {
             w.u32(f.params.len() as u32);
             for p in &f.params {
-                w.f64(p.1);
+                w.f64(p.value);
             }
         }
         for cu in &c.custom {

@@ -66,6 +66,61 @@ pub const F_LIFT_OFF: f64 = 1e-3;
 /// Longest sub-step of a bristle in [`Scheme::Continuous`], in cells of the central strip.
 pub const MAX_SUBSTEP_CELLS: f64 = 4.0;
 
+/// The complete hidden state of a [`Contact`], borrowed for serialization
+/// ([`Contact::raw_state`], module [`crate::state`]). The grid, `inputs` and `out` are those
+/// of the frame the contact rolls forwards in (mirrored x -> -x while `reversed`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RawState<'a> {
+    /// Simulated time since start, s.
+    pub time: f64,
+    /// Last inputs, forward frame (v >= 0; units in [`Inputs`]).
+    pub inputs: Inputs,
+    /// Ring-buffer head per strip (`ny` values, each in 0..=nx): storage slot of the
+    /// bristle nearest the leading edge.
+    pub head: &'a [usize],
+    /// Phase per strip (`ny` values in [0, 1)), in cells: how far the strip's bristles have
+    /// moved since the last one entered at the leading edge (Eq. 4.17).
+    pub phase: &'a [f64],
+    /// Bristle states, `ny * (nx + 1)`, index `j * (nx + 1) + storage slot` (units in
+    /// [`BristleState`]).
+    pub st: &'a [BristleState],
+    /// Heat-kernel accumulators A_k per bristle (same index as `st`), J/m^2: the bristle's
+    /// frictional heat density history q (W/m^2, both bodies) weighted by exp(-s_k age)
+    /// (module [`crate::thermal`]); `[0]` is all heat ever received.
+    pub acc: &'a [[f64; N_KERNEL]],
+    /// True once a step or steady state has set the grid (false: the next step starts
+    /// from the steady state of its inputs).
+    pub initialized: bool,
+    /// Last outputs, forward frame (units in [`Outputs`]).
+    pub out: Outputs,
+    /// Rolling backwards (the last non-zero speed was negative), -.
+    pub reversed: bool,
+}
+
+/// The owned counterpart of [`RawState`], read from bytes and handed to
+/// [`Contact::set_raw_state`]; the fields mean the same, with the same units.
+#[derive(Clone, Debug)]
+pub(crate) struct OwnedRawState {
+    /// Simulated time since start, s.
+    pub time: f64,
+    /// Last inputs, forward frame (v >= 0).
+    pub inputs: Inputs,
+    /// Ring-buffer head per strip (`ny` values in 0..=nx).
+    pub head: Vec<usize>,
+    /// Phase per strip (`ny` values in [0, 1)), cells (Eq. 4.17).
+    pub phase: Vec<f64>,
+    /// Bristle states, `ny * (nx + 1)`.
+    pub st: Vec<BristleState>,
+    /// Heat-kernel accumulators per bristle, J/m^2.
+    pub acc: Vec<[f64; N_KERNEL]>,
+    /// True once a step or steady state has set the grid.
+    pub initialized: bool,
+    /// Last outputs, forward frame.
+    pub out: Outputs,
+    /// Rolling backwards, -.
+    pub reversed: bool,
+}
+
 /// The persistent contact: geometry, bristle grid and its state.
 #[derive(Clone, Debug)]
 pub struct Contact {
@@ -458,46 +513,35 @@ impl Contact {
         self.integrate()
     }
 
-    /// Raw state for serialization: (time, inputs, heads, phases, bristles, accumulators, initialized).
-    #[allow(clippy::type_complexity)]
-    pub(crate) fn raw_state(
-        &self,
-    ) -> (
-        f64,
-        Inputs,
-        &[usize],
-        &[f64],
-        &[BristleState],
-        &[[f64; N_KERNEL]],
-        bool,
-        Outputs,
-    ) {
-        (
-            self.time,
-            self.inputs,
-            &self.head,
-            &self.phase,
-            &self.st,
-            &self.acc,
-            self.initialized,
-            self.out,
-        )
+    /// The complete hidden state, borrowed for serialization (module [`crate::state`]).
+    pub(crate) fn raw_state(&self) -> RawState<'_> {
+        RawState {
+            time: self.time,
+            inputs: self.inputs,
+            head: &self.head,
+            phase: &self.phase,
+            st: &self.st,
+            acc: &self.acc,
+            initialized: self.initialized,
+            out: self.out,
+            reversed: self.reversed,
+        }
     }
 
-    /// Restores a raw state; checks the sizes.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn set_raw_state(
-        &mut self,
-        time: f64,
-        inputs: Inputs,
-        head: Vec<usize>,
-        phase: Vec<f64>,
-        st: Vec<BristleState>,
-        acc: Vec<[f64; N_KERNEL]>,
-        initialized: bool,
-        out: Outputs,
-        reversed: bool,
-    ) -> Result<()> {
+    /// Restores a state read by module [`crate::state`]; checks the sizes, the ring-buffer
+    /// heads and phases and that the inputs are in the forward frame.
+    pub(crate) fn set_raw_state(&mut self, state: OwnedRawState) -> Result<()> {
+        let OwnedRawState {
+            time,
+            inputs,
+            head,
+            phase,
+            st,
+            acc,
+            initialized,
+            out,
+            reversed,
+        } = state;
         if head.len() != self.ny
             || phase.len() != self.ny
             || st.len() != self.st.len()

@@ -1,6 +1,6 @@
 //! The shortcuts of `diagnose` change nothing: memoised predictions and fits are bit-identical to the plain ones, and the diagnosis does not depend on the number of threads.
 use crate::common::*;
-use creep_core::formula::{FormulaEffect, Target};
+use creep_core::formula::{FormulaEffect, FormulaParam, Target};
 use creep_core::Config;
 use ecf_measure::diagnose::{diagnose, diagnose_with};
 use ecf_measure::evaluate::{predict, predict_with, Memo};
@@ -22,7 +22,12 @@ fn with_formula(cfg: &Config) -> (Config, Vec<FreeParam>) {
             "tau_c2_by_humidity",
             Target::TauC2,
             "exp(k * (humidity - 50) / 16.3)",
-            vec![("k".into(), 0.0, -3.0, 3.0)],
+            vec![FormulaParam {
+                name: "k".into(),
+                value: 0.0,
+                min: -3.0,
+                max: 3.0,
+            }],
         )
         .expect("formula"),
     );
