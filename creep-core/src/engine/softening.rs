@@ -188,7 +188,7 @@ impl Contact {
                     * (dir[0] * (du[0] + l[0] * old.tau[0]) + dir[1] * (du[1] + l[1] * old.tau[1]))
                     - bb * t_h * (1.0 - theta);
                 let b = bb * theta;
-                // the stress at the last temperature evaluated: (T, t, dt/dT, sliding)
+                // the last temperature evaluated and the law there: (T, t, dt/dT, sliding, tau_c2)
                 let last = std::cell::Cell::new((t_hist, t_h, dt_h, t0 >= m_h.tc2, m_h.tc2));
                 let q_of = |t_k: f64| {
                     let (t, dt, sl, tc2) = stress(t_k - t_hist);
@@ -236,9 +236,9 @@ impl Contact {
                         (root, sl, t)
                     }
                 } else {
-                    // q rises with T fast at first (the softening's elastic release heats more
-                    // than the lower stress saves): the general search for the smallest root,
-                    // on the scalar law
+                    // q rises with T (the softening's elastic release heats more than the lower
+                    // stress saves) and no bound proves a single root: the general search for
+                    // the smallest root, on the scalar law
                     let ((), q) = thermal::solve_self_heating(
                         t_hist,
                         self_c,
