@@ -18,6 +18,7 @@
 #![warn(missing_docs)]
 
 pub mod bristle;
+pub mod bytes;
 pub mod config;
 pub mod custom;
 pub mod effects;

@@ -10,6 +10,7 @@
 //! from another configuration or a corrupt buffer is refused with a message, never misread.
 
 use crate::bristle::{BristleState, Regime};
+use crate::bytes::{Reader, Writer};
 use crate::engine::{Inputs, Outputs, OwnedRawState};
 use crate::error::{CreepError, Result};
 use crate::model::Model;
@@ -19,55 +20,28 @@ const MAGIC: &[u8; 8] = b"ECFSTATE";
 /// Current version of the byte format.
 pub const VERSION: u32 = 2;
 
-struct W(Vec<u8>);
-impl W {
-    fn f(&mut self, x: f64) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-    fn u(&mut self, x: u32) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-    fn b(&mut self, x: u8) {
-        self.0.push(x);
-    }
-}
+type W = Writer;
 
-struct R<'a> {
-    d: &'a [u8],
-    p: usize,
-}
+/// The shared reader with the model's error type.
+struct R<'a>(Reader<'a>);
 impl R<'_> {
-    fn take(&mut self, n: usize) -> Result<&[u8]> {
-        if self.p + n > self.d.len() {
-            return Err(CreepError::State(format!(
-                "truncated buffer: need {} bytes at offset {}, have {}",
-                n,
-                self.p,
-                self.d.len()
-            )));
-        }
-        let s = &self.d[self.p..self.p + n];
-        self.p += n;
-        Ok(s)
-    }
     fn f(&mut self) -> Result<f64> {
-        let mut a = [0u8; 8];
-        a.copy_from_slice(self.take(8)?);
-        Ok(f64::from_le_bytes(a))
+        self.0.f64().map_err(CreepError::State)
     }
     fn u(&mut self) -> Result<u32> {
-        let mut a = [0u8; 4];
-        a.copy_from_slice(self.take(4)?);
-        Ok(u32::from_le_bytes(a))
+        self.0.u32().map_err(CreepError::State)
     }
     fn b(&mut self) -> Result<u8> {
-        Ok(self.take(1)?[0])
+        self.0.u8().map_err(CreepError::State)
+    }
+    fn take(&mut self, n: usize) -> Result<&[u8]> {
+        self.0.take(n).map_err(CreepError::State)
     }
 }
 
 fn put_inputs(w: &mut W, i: &Inputs) {
     for x in [i.cx, i.cy, i.spin, i.v, i.fn_n, i.t_bulk] {
-        w.f(x);
+        w.f64(x);
     }
 }
 fn get_inputs(r: &mut R) -> Result<Inputs> {
@@ -82,7 +56,7 @@ fn get_inputs(r: &mut R) -> Result<Inputs> {
 }
 fn put_outputs(w: &mut W, o: &Outputs) {
     for x in o.to_array() {
-        w.f(x);
+        w.f64(x);
     }
 }
 fn get_outputs(r: &mut R) -> Result<Outputs> {
@@ -106,56 +80,55 @@ fn get_outputs(r: &mut R) -> Result<Outputs> {
 impl Model {
     /// Serializes the complete state.
     pub fn save_state(&self) -> Vec<u8> {
-        let mut w = W(Vec::new());
-        w.0.extend_from_slice(MAGIC);
-        w.u(VERSION);
+        let mut w = W::new();
+        w.raw(MAGIC);
+        w.u32(VERSION);
         let cfg = self.config().to_json().to_string();
-        w.u(cfg.len() as u32);
-        w.0.extend_from_slice(cfg.as_bytes());
+        w.str(&cfg);
         match self {
             Model::Polach {
                 inputs, out, time, ..
             } => {
-                w.f(*time);
+                w.f64(*time);
                 put_inputs(&mut w, inputs);
                 put_outputs(&mut w, out);
-                w.b(1);
+                w.u8(1);
             }
             Model::Bristle(c) => {
                 let s = c.raw_state();
-                w.f(s.time);
+                w.f64(s.time);
                 put_inputs(&mut w, &s.inputs);
                 put_outputs(&mut w, &s.out);
-                w.b(s.initialized as u8 | (s.reversed as u8) << 1);
+                w.u8(s.initialized as u8 | (s.reversed as u8) << 1);
                 let (nx, ny) = c.grid_size();
-                w.u(nx as u32);
-                w.u(ny as u32);
-                w.u(N_KERNEL as u32);
+                w.u32(nx as u32);
+                w.u32(ny as u32);
+                w.u32(N_KERNEL as u32);
                 for h in s.head {
-                    w.u(*h as u32);
+                    w.u32(*h as u32);
                 }
                 for p in s.phase {
-                    w.f(*p);
+                    w.f64(*p);
                 }
                 for b in s.st {
                     for x in [b.u[0], b.u[1], b.tau[0], b.tau[1], b.sh, b.temp, b.q] {
-                        w.f(x);
+                        w.f64(x);
                     }
-                    w.b(b.regime as u8);
+                    w.u8(b.regime as u8);
                 }
                 for a in s.acc {
                     for x in a {
-                        w.f(*x);
+                        w.f64(*x);
                     }
                 }
             }
         }
-        w.0
+        w.into_inner()
     }
 
     /// Restores a state saved by [`Model::save_state`] of a model with the same configuration.
     pub fn load_state(&mut self, data: &[u8]) -> Result<()> {
-        let mut r = R { d: data, p: 0 };
+        let mut r = R(Reader::new(data));
         if r.take(8)? != MAGIC {
             return Err(CreepError::State("not an ECF state (bad magic)".into()));
         }
@@ -265,10 +238,10 @@ impl Model {
                     }
                     acc.push(a);
                 }
-                if r.p != data.len() {
+                if r.0.position() != data.len() {
                     return Err(CreepError::State(format!(
                         "{} trailing bytes",
-                        data.len() - r.p
+                        data.len() - r.0.position()
                     )));
                 }
                 c.set_raw_state(OwnedRawState {

@@ -14,6 +14,7 @@
 
 use crate::instance::{validate_snapshot, Snapshot};
 use crate::settings::{extras_for, Settings};
+use creep_core::bytes::{Reader, Writer};
 use creep_core::effects::{self, Effect, EffectSet};
 use creep_core::params::{self, Params, P};
 use creep_core::{Bound, Config, Geometry, Grid, Model, ModelKind};
@@ -23,83 +24,9 @@ pub const MAGIC: &[u8; 8] = b"ECFFMUST";
 /// Format version written by this build.
 pub const VERSION: u32 = 2;
 
-struct W(Vec<u8>);
+type W = Writer;
+type R<'a> = Reader<'a>;
 
-impl W {
-    fn u8(&mut self, x: u8) {
-        self.0.push(x);
-    }
-    fn u32(&mut self, x: u32) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-    fn i32(&mut self, x: i32) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-    fn f64(&mut self, x: f64) {
-        self.0.extend_from_slice(&x.to_le_bytes());
-    }
-    fn bytes(&mut self, b: &[u8]) {
-        self.u32(b.len() as u32);
-        self.0.extend_from_slice(b);
-    }
-    fn str(&mut self, s: &str) {
-        self.bytes(s.as_bytes());
-    }
-}
-
-struct R<'a> {
-    d: &'a [u8],
-    p: usize,
-}
-
-impl<'a> R<'a> {
-    fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
-        if self.d.len() - self.p < n {
-            return Err(format!(
-                "truncated at byte {} (need {n} more bytes, {} left)",
-                self.p,
-                self.d.len() - self.p
-            ));
-        }
-        let s = &self.d[self.p..self.p + n];
-        self.p += n;
-        Ok(s)
-    }
-    fn u8(&mut self) -> Result<u8, String> {
-        Ok(self.take(1)?[0])
-    }
-    fn u32(&mut self) -> Result<u32, String> {
-        let b = self.take(4)?;
-        Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-    }
-    fn i32(&mut self) -> Result<i32, String> {
-        let b = self.take(4)?;
-        Ok(i32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-    }
-    fn f64(&mut self) -> Result<f64, String> {
-        let b = self.take(8)?;
-        let mut a = [0u8; 8];
-        a.copy_from_slice(b);
-        Ok(f64::from_le_bytes(a))
-    }
-    fn bytes(&mut self) -> Result<&'a [u8], String> {
-        let n = self.u32()? as usize;
-        self.take(n)
-    }
-    fn str(&mut self) -> Result<String, String> {
-        let b = self.bytes()?;
-        String::from_utf8(b.to_vec()).map_err(|_| "a string is not UTF-8".to_string())
-    }
-    fn bool(&mut self) -> Result<bool, String> {
-        match self.u8()? {
-            0 => Ok(false),
-            1 => Ok(true),
-            b => Err(format!("bad boolean byte {b} at {}", self.p - 1)),
-        }
-    }
-}
-
-/// Index of an effect in the catalogue (serialization).
 fn effect_index(e: Effect) -> u8 {
     effects::CATALOGUE
         .iter()
@@ -272,8 +199,8 @@ fn get_config(r: &mut R) -> Result<Config, String> {
 
 /// Serializes a snapshot.
 pub fn serialize(s: &Snapshot) -> Vec<u8> {
-    let mut w = W(Vec::new());
-    w.0.extend_from_slice(MAGIC);
+    let mut w = W::new();
+    w.raw(MAGIC);
     w.u32(VERSION);
     w.f64(s.time);
     for x in s.inputs {
@@ -316,12 +243,12 @@ pub fn serialize(s: &Snapshot) -> Vec<u8> {
         }
         None => w.u8(0),
     }
-    w.0
+    w.into_inner()
 }
 
 /// Reads a snapshot written by [`serialize`]; checks everything, including the core state.
 pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
-    let mut r = R { d: data, p: 0 };
+    let mut r = R::new(data);
     if r.take(8).ok() != Some(&MAGIC[..]) {
         return Err("not a serialized ecf_contact FMU state (bad magic)".into());
     }
@@ -386,8 +313,8 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     } else {
         None
     };
-    if r.p != data.len() {
-        return Err(format!("{} trailing bytes", data.len() - r.p));
+    if r.position() != data.len() {
+        return Err(format!("{} trailing bytes", data.len() - r.position()));
     }
     let snap = Snapshot {
         settings: st,
