@@ -12,7 +12,9 @@ docs/validation/numbers.json (tests-py/test_gallery.py re-renders and compares).
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Callable
 
 import numpy as np
@@ -161,9 +163,10 @@ def settling(t: np.ndarray, f: np.ndarray, window: float, tol: float = 0.02) -> 
     return {"f_old": f_old, "f_new": f_new, "ripple": ripple, "band": band, "t_settle": ts}
 
 
-def loop_area(c: np.ndarray, f: np.ndarray) -> float:
-    """Signed area of a closed loop in the (c, f) plane (> 0: counter-clockwise)."""
-    return float(0.5 * np.sum(c[:-1] * f[1:] - c[1:] * f[:-1]))
+# the drive-train demo's analysis module is the one home of loop_area (the gallery runs the
+# demo from its source folder too)
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "drivetrain-demo"))
+from drivetrain_demo.analysis import loop_area  # noqa: E402  (signed area, closes the loop)
 
 
 def self_crossings(x: np.ndarray, y: np.ndarray) -> list[tuple[float, float]]:

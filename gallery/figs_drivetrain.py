@@ -115,7 +115,7 @@ def drivetrain_compute(S):
             c, f = d["cx"][m], d["f"][m]
             ok = np.isfinite(c) & np.isfinite(f)
             c, f = c[ok], f[ok]
-            r.update(loop_area=loop_area(np.append(c, c[0]), np.append(f, f[0])), f_min=float(f.min()), f_max=float(f.max()),
+            r.update(loop_area=loop_area(c, f), f_min=float(f.min()), f_max=float(f.max()),
                      c_min=float(c.min()), c_max=float(c.max()))
             st = data[tag][1]
             if st is not None:
