@@ -76,11 +76,6 @@ impl Contact {
         acc: &mut [f64; N_KERNEL],
         fac: &StepFactors,
     ) -> f64 {
-        if self.softening_fast && k.heat {
-            if let Some(q) = self.update_softening(k, np, [x, y], s, acc, fac) {
-                return q;
-            }
-        }
         let d = k.dist;
         let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
         // Temperature from the heat history (all but the newest interval), Eq. 4.35.
@@ -92,6 +87,12 @@ impl Contact {
         } else {
             k.t_bulk
         };
+        // a layer that only softens as it heats: the scalar solve (module `softening`)
+        if self.softening_fast && k.heat {
+            if let Some(q) = self.update_softening(k, np, [x, y], du, t_hist, s, acc, fac) {
+                return q;
+            }
+        }
         let self_c = k.self_c;
         let old = *s;
         // displacements and stresses are far from overflow: sqrt instead of hypot

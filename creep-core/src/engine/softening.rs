@@ -23,26 +23,24 @@ use crate::thermal::{self, StepFactors, N_KERNEL};
 impl Contact {
     /// [`Contact::update_bristle`] on the scalar path (see the module): advances one bristle
     /// by one sub-step with heat flow and returns its heat density q (W/m^2), or None with
-    /// the bristle untouched where the general solve must run.
+    /// the bristle untouched where the general solve must run. `du` is the move's rigid slip
+    /// (m) and `t_hist` the temperature of its heat history (degC, Eq. 4.35), both from
+    /// [`Contact::update_bristle`].
     #[inline]
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn update_softening(
         &self,
         k: &Kin,
         np: &NodeP,
         [x, y]: [f64; 2],
+        du: [f64; 2],
+        t_hist: f64,
         s: &mut BristleState,
         acc: &mut [f64; N_KERNEL],
         fac: &StepFactors,
     ) -> Option<f64> {
         let d = k.dist;
-        let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
-        // the history part of Eq. 4.35, as in the general move
         let warm = acc[0] != 0.0;
-        let t_hist = if warm {
-            k.t_bulk + k.alpha_c * fac.history(acc)
-        } else {
-            k.t_bulk
-        };
         let self_c = k.self_c;
         if self_c.is_nan() || self_c <= 0.0 {
             return None;
