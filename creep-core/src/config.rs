@@ -10,6 +10,7 @@
 
 use crate::effects::{self, Effect, EffectSet};
 use crate::error::{CreepError, Result};
+use crate::modifier::{AnyModifier, Modifier};
 use crate::params::{self, Params};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
@@ -157,10 +158,11 @@ pub struct Config {
     pub grid: Grid,
     /// Contact geometry.
     pub geometry: Geometry,
-    /// User-written formula effects (module [`crate::formula`]).
-    pub formulas: Vec<crate::formula::FormulaEffect>,
-    /// Effects written in Rust (module [`crate::custom`]).
-    pub custom: Vec<crate::custom::CustomUse>,
+    /// Modifiers of the material law (module [`crate::modifier`]): formula effects
+    /// (configuration key `formula_effects`, module [`crate::formula`]) and effects written in
+    /// Rust (`custom_effects`, module [`crate::custom`]), in one list; a configuration file's
+    /// formula effects come first, then its Rust effects, each in file order.
+    pub modifiers: Vec<crate::modifier::AnyModifier>,
 }
 
 #[derive(Debug, Default, Deserialize, Serialize)]
@@ -312,6 +314,22 @@ fn parse_geometry(src: &str, m: &Map<String, Value>) -> Result<Geometry> {
 }
 
 impl Config {
+    /// The formula effects among the modifiers, in list order.
+    pub fn formulas(&self) -> impl Iterator<Item = &crate::formula::FormulaEffect> {
+        self.modifiers.iter().filter_map(|m| match m {
+            AnyModifier::Formula(f) => Some(f),
+            AnyModifier::Rust(_) => None,
+        })
+    }
+
+    /// The Rust effects among the modifiers, in list order.
+    pub fn rust_effects(&self) -> impl Iterator<Item = &crate::custom::CustomUse> {
+        self.modifiers.iter().filter_map(|m| match m {
+            AnyModifier::Rust(c) => Some(c),
+            AnyModifier::Formula(_) => None,
+        })
+    }
+
     /// The configuration of a preset by name.
     pub fn preset(name: &str) -> Result<Self> {
         let text = preset_text(name)?;
@@ -367,8 +385,7 @@ impl Config {
                     bound: Bound::Elliptic,
                     grid: DEFAULT_GRID,
                     geometry: DEFAULT_GEOMETRY,
-                    formulas: Vec::new(),
-                    custom: Vec::new(),
+                    modifiers: Vec::new(),
                 }
             }
         };
@@ -524,13 +541,13 @@ impl Config {
                 }
                 let fe = crate::formula::FormulaEffect::new(&f.name, target, &f.factor, ps)
                     .map_err(|e| cfg_err(src, e.to_string()))?;
-                if cfg.formulas.iter().any(|g| g.name == fe.name) {
+                if cfg.modifiers.iter().any(|g| g.name() == fe.name) {
                     return Err(cfg_err(
                         src,
                         format!("formula_effects: duplicate name '{}'", fe.name),
                     ));
                 }
-                cfg.formulas.push(fe);
+                cfg.modifiers.push(AnyModifier::Formula(fe));
             }
         }
         if let Some(list) = &raw.custom_effects {
@@ -542,16 +559,19 @@ impl Config {
                     u.set(n, x)
                         .map_err(|e| cfg_err(src, format!("custom_effects: {e}")))?;
                 }
-                if cfg.custom.iter().any(|k| k.effect.name() == c.name) {
+                if cfg.modifiers.iter().any(|k| k.name() == c.name) {
                     return Err(cfg_err(
                         src,
-                        format!("custom_effects: '{}' given twice", c.name),
+                        format!(
+                            "custom_effects: '{}' given twice (formula and Rust effects share one name space: their parameters are NAME.PARAM)",
+                            c.name
+                        ),
                     ));
                 }
-                cfg.custom.push(u);
+                cfg.modifiers.push(AnyModifier::Rust(u));
             }
         }
-        if cfg.model == ModelKind::Polach && !(cfg.formulas.is_empty() && cfg.custom.is_empty()) {
+        if cfg.model == ModelKind::Polach && !cfg.modifiers.is_empty() {
             return Err(cfg_err(
                 src,
                 "formula_effects act on the bristle engine (ecf, fastsim), not on polach".into(),
@@ -598,8 +618,7 @@ impl Config {
             }
         };
         let formulas: Vec<Value> = self
-            .formulas
-            .iter()
+            .formulas()
             .map(|f| {
                 let ps: Map<String, Value> = f.params.iter().map(|q| (q.name.clone(), serde_json::json!({"value": q.value, "min": q.min, "max": q.max}))).collect();
                 serde_json::json!({"name": f.name, "target": f.target.name(), "factor": f.source, "params": ps})
@@ -607,7 +626,7 @@ impl Config {
             .collect();
         let mut v = serde_json::json!({
             "formula_effects": formulas,
-            "custom_effects": self.custom.iter().map(|c| {
+            "custom_effects": self.rust_effects().map(|c| {
                 let ps: Map<String, Value> = c.effect.params().iter().zip(&c.params).map(|(d, v)| (d.0.to_string(), serde_json::json!(v))).collect();
                 serde_json::json!({"name": c.effect.name(), "params": ps})
             }).collect::<Vec<_>>(),

@@ -216,3 +216,46 @@ impl CustomUse {
         Ok(())
     }
 }
+
+impl crate::modifier::Modifier for CustomUse {
+    fn name(&self) -> &str {
+        self.effect.name()
+    }
+    fn describe(&self) -> String {
+        format!("Rust effect '{}'", self.effect.name())
+    }
+    fn target(&self) -> Target {
+        self.effect.target()
+    }
+    fn uses_local_state(&self) -> bool {
+        self.effect.uses_local_state()
+    }
+    fn columns(&self) -> Vec<&str> {
+        self.effect.columns().to_vec()
+    }
+    fn n_params(&self) -> usize {
+        self.params.len()
+    }
+    fn param(&self, k: usize) -> crate::modifier::ModifierParam {
+        let spec = self.effect.params()[k];
+        crate::modifier::ModifierParam {
+            name: spec.0.to_string(),
+            value: self.params[k],
+            min: self.bounds[k].0,
+            max: self.bounds[k].1,
+            limits: (spec.2, spec.3),
+        }
+    }
+    fn set_param(&mut self, k: usize, v: f64) {
+        self.params[k] = v;
+    }
+    fn set_bounds(&mut self, k: usize, lo: f64, hi: f64) {
+        self.bounds[k] = (lo, hi);
+    }
+    /// The effect's own factor; it reads its columns from `op` by name (the
+    /// [`CustomEffect`] interface), so `cols` is not used.
+    #[inline]
+    fn factor(&self, local: &LocalState, op: &OperatingPoint, _cols: &[f64]) -> f64 {
+        self.effect.factor(&self.params, local, op)
+    }
+}

@@ -61,6 +61,34 @@ pub const LOCAL: [&str; 4] = ["p_GPa", "T_C", "u_mm", "slip_mps"];
 /// Operating-point variables (indices 4..9).
 pub const OPERATING: [&str; 5] = ["v_mps", "fn_kN", "cx", "cy", "spin_per_m"];
 
+/// The functions a formula may call, resolved when it is compiled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Func {
+    Exp,
+    Ln,
+    Sqrt,
+    Abs,
+    Tanh,
+    Min,
+    Max,
+}
+
+impl Func {
+    fn parse(name: &str) -> Option<(Func, usize)> {
+        Some(match name {
+            "exp" => (Func::Exp, 1),
+            "ln" => (Func::Ln, 1),
+            "sqrt" => (Func::Sqrt, 1),
+            "abs" => (Func::Abs, 1),
+            "tanh" => (Func::Tanh, 1),
+            "min" => (Func::Min, 2),
+            "max" => (Func::Max, 2),
+            _ => return None,
+        })
+    }
+}
+
+/// The parsed expression tree (compiled to [`Op`]s, then dropped).
 #[derive(Clone, Debug, PartialEq)]
 enum Node {
     Num(f64),
@@ -68,7 +96,85 @@ enum Node {
     Param(usize),
     Neg(Box<Node>),
     Bin(char, Box<Node>, Box<Node>),
-    Call(String, Vec<Node>),
+    Call(Func, Vec<Node>),
+}
+
+/// One instruction of a compiled formula: a stack machine in postfix order (the operands
+/// of a node are evaluated in the order the tree evaluation took them, so the result is the
+/// same to the bit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Op {
+    Num(f64),
+    /// A local-state variable (index into [`LOCAL`]).
+    Local(u8),
+    /// An operating-point variable (index into [`OPERATING`]).
+    Operating(u8),
+    /// A data column (index into [`FormulaEffect::columns`]).
+    Column(u16),
+    Param(u16),
+    Neg,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Pow,
+    Call1(Func),
+    Min,
+    Max,
+}
+
+/// Deepest evaluation stack a formula may need (checked when it is compiled).
+const MAX_STACK: usize = 32;
+
+fn compile(n: &Node, out: &mut Vec<Op>) {
+    match n {
+        Node::Num(x) => out.push(Op::Num(*x)),
+        Node::Var(i) if *i < LOCAL.len() => out.push(Op::Local(*i as u8)),
+        Node::Var(i) if *i < LOCAL.len() + OPERATING.len() => {
+            out.push(Op::Operating((*i - LOCAL.len()) as u8))
+        }
+        Node::Var(i) => out.push(Op::Column((*i - LOCAL.len() - OPERATING.len()) as u16)),
+        Node::Param(i) => out.push(Op::Param(*i as u16)),
+        Node::Neg(a) => {
+            compile(a, out);
+            out.push(Op::Neg);
+        }
+        Node::Bin(op, a, b) => {
+            compile(a, out);
+            compile(b, out);
+            out.push(match op {
+                '+' => Op::Add,
+                '-' => Op::Sub,
+                '*' => Op::Mul,
+                '/' => Op::Div,
+                _ => Op::Pow,
+            });
+        }
+        Node::Call(f, args) => {
+            for a in args {
+                compile(a, out);
+            }
+            out.push(match f {
+                Func::Min => Op::Min,
+                Func::Max => Op::Max,
+                f => Op::Call1(*f),
+            });
+        }
+    }
+}
+
+/// Stack depth the ops need.
+fn stack_depth(ops: &[Op]) -> usize {
+    let (mut d, mut max) = (0usize, 0usize);
+    for op in ops {
+        match op {
+            Op::Num(_) | Op::Local(_) | Op::Operating(_) | Op::Column(_) | Op::Param(_) => d += 1,
+            Op::Neg | Op::Call1(_) => {}
+            _ => d -= 1,
+        }
+        max = max.max(d);
+    }
+    max
 }
 
 /// One parameter of a formula effect (configuration: `"params": {NAME: {"value": v, "min": lo,
@@ -101,7 +207,8 @@ pub struct FormulaEffect {
     pub params: Vec<FormulaParam>,
     /// Extra (data) columns the expression uses, in variable order after the fixed ones.
     pub columns: Vec<String>,
-    expr: Node,
+    /// The expression compiled to postfix instructions (functions and variables resolved).
+    ops: Vec<Op>,
     /// True if the expression uses local bristle state.
     pub local: bool,
 }
@@ -225,19 +332,15 @@ impl Parser<'_> {
                         return Err(self.err("expected ')' after arguments"));
                     }
                     self.i += 1;
-                    let n = match name.as_str() {
-                        "exp" | "ln" | "sqrt" | "abs" | "tanh" => 1,
-                        "min" | "max" => 2,
-                        _ => {
-                            return Err(self.err(&format!(
-                                "unknown function '{name}' (exp, ln, sqrt, abs, tanh, min, max)"
-                            )))
-                        }
+                    let Some((func, n)) = Func::parse(&name) else {
+                        return Err(self.err(&format!(
+                            "unknown function '{name}' (exp, ln, sqrt, abs, tanh, min, max)"
+                        )));
                     };
                     if args.len() != n {
                         return Err(self.err(&format!("{name} takes {n} argument(s)")));
                     }
-                    return Ok(Node::Call(name, args));
+                    return Ok(Node::Call(func, args));
                 }
                 if let Some(k) = self.params.iter().position(|p| p.name == name) {
                     return Ok(Node::Param(k));
@@ -274,35 +377,52 @@ fn uses_vars(n: &Node) -> bool {
     }
 }
 
-fn eval(n: &Node, vars: &[f64], params: &[FormulaParam]) -> f64 {
-    match n {
-        Node::Num(x) => *x,
-        Node::Var(i) => vars.get(*i).copied().unwrap_or(f64::NAN),
-        Node::Param(i) => params[*i].value,
-        Node::Neg(a) => -eval(a, vars, params),
-        Node::Bin(op, a, b) => {
-            let (x, y) = (eval(a, vars, params), eval(b, vars, params));
-            match op {
-                '+' => x + y,
-                '-' => x - y,
-                '*' => x * y,
-                '/' => x / y,
-                _ => x.powf(y),
+/// Runs compiled ops; `var(op)` gives the value of a variable instruction.
+#[inline]
+fn run(ops: &[Op], params: &[FormulaParam], var: impl Fn(Op) -> f64) -> f64 {
+    let mut st = [0.0f64; MAX_STACK];
+    let mut n = 0usize;
+    for &op in ops {
+        match op {
+            Op::Num(x) => {
+                st[n] = x;
+                n += 1;
             }
-        }
-        Node::Call(f, args) => {
-            let x = eval(&args[0], vars, params);
-            match f.as_str() {
-                "exp" => x.exp(),
-                "ln" => x.ln(),
-                "sqrt" => x.sqrt(),
-                "abs" => x.abs(),
-                "tanh" => x.tanh(),
-                "min" => x.min(eval(&args[1], vars, params)),
-                _ => x.max(eval(&args[1], vars, params)),
+            Op::Param(i) => {
+                st[n] = params[i as usize].value;
+                n += 1;
+            }
+            Op::Local(_) | Op::Operating(_) | Op::Column(_) => {
+                st[n] = var(op);
+                n += 1;
+            }
+            Op::Neg => st[n - 1] = -st[n - 1],
+            Op::Call1(f) => {
+                let x = st[n - 1];
+                st[n - 1] = match f {
+                    Func::Exp => x.exp(),
+                    Func::Ln => x.ln(),
+                    Func::Sqrt => x.sqrt(),
+                    Func::Abs => x.abs(),
+                    _ => x.tanh(),
+                };
+            }
+            _ => {
+                n -= 1;
+                let (x, y) = (st[n - 1], st[n]);
+                st[n - 1] = match op {
+                    Op::Add => x + y,
+                    Op::Sub => x - y,
+                    Op::Mul => x * y,
+                    Op::Div => x / y,
+                    Op::Pow => x.powf(y),
+                    Op::Min => x.min(y),
+                    _ => x.max(y),
+                };
             }
         }
     }
+    st[0]
 }
 
 impl FormulaEffect {
@@ -346,9 +466,20 @@ impl FormulaEffect {
             });
         }
         let (columns, local) = (p.columns, p.local);
+        let mut ops = Vec::new();
+        compile(&expr, &mut ops);
+        if stack_depth(&ops) > MAX_STACK {
+            return Err(CreepError::Config {
+                source_name: format!("formula_effects.{name}.factor"),
+                message: format!(
+                    "'{factor}' nests too deeply (it needs {} intermediate values, at most {MAX_STACK}); split it into two effects on the same target",
+                    stack_depth(&ops)
+                ),
+            });
+        }
         // a factor that depends on no variable is known now: finite and >= 0
         if !uses_vars(&expr) {
-            let x = eval(&expr, &[], &params);
+            let x = run(&ops, &params, |_| f64::NAN);
             if !(x.is_finite() && x >= 0.0) {
                 return Err(CreepError::OutOfRange {
                     field: format!("formula_effects.{name}.factor '{factor}'"),
@@ -363,19 +494,92 @@ impl FormulaEffect {
             source: factor.into(),
             params,
             columns,
-            expr,
+            ops,
             local,
         })
     }
 
-    /// Evaluates the factor; `vars` = LOCAL values, OPERATING values, then the columns.
+    /// Evaluates the factor; `vars` = LOCAL values, OPERATING values, then the columns
+    /// (a missing value reads as NaN).
     pub fn eval(&self, vars: &[f64]) -> f64 {
-        eval(&self.expr, vars, &self.params)
+        let at = |i: usize| vars.get(i).copied().unwrap_or(f64::NAN);
+        run(&self.ops, &self.params, |op| match op {
+            Op::Local(i) => at(i as usize),
+            Op::Operating(i) => at(LOCAL.len() + i as usize),
+            Op::Column(i) => at(LOCAL.len() + OPERATING.len() + i as usize),
+            _ => f64::NAN,
+        })
     }
 
     /// Sets a parameter value (for fitting).
     pub fn set_param(&mut self, k: usize, v: f64) {
         self.params[k].value = v;
+    }
+}
+
+impl crate::modifier::Modifier for FormulaEffect {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn describe(&self) -> String {
+        // long factors shortened to their first 40 characters, as reports quote them
+        let n = self.source.chars().count();
+        let src = if n <= 40 {
+            self.source.clone()
+        } else {
+            let head: String = self.source.chars().take(40).collect();
+            format!("{head}... ({n} characters)")
+        };
+        format!("formula effect '{}' (factor '{src}')", self.name)
+    }
+    fn target(&self) -> Target {
+        self.target
+    }
+    fn uses_local_state(&self) -> bool {
+        self.local
+    }
+    fn columns(&self) -> Vec<&str> {
+        self.columns.iter().map(|c| c.as_str()).collect()
+    }
+    fn n_params(&self) -> usize {
+        self.params.len()
+    }
+    fn param(&self, k: usize) -> crate::modifier::ModifierParam {
+        let q = &self.params[k];
+        crate::modifier::ModifierParam {
+            name: q.name.clone(),
+            value: q.value,
+            min: q.min,
+            max: q.max,
+            limits: (q.min, q.max),
+        }
+    }
+    fn set_param(&mut self, k: usize, v: f64) {
+        self.params[k].value = v;
+    }
+    fn set_bounds(&mut self, k: usize, lo: f64, hi: f64) {
+        (self.params[k].min, self.params[k].max) = (lo, hi);
+    }
+    #[inline]
+    fn factor(
+        &self,
+        local: &crate::custom::LocalState,
+        op: &crate::custom::OperatingPoint,
+        cols: &[f64],
+    ) -> f64 {
+        run(&self.ops, &self.params, |o| match o {
+            Op::Local(0) => local.p_gpa,
+            Op::Local(1) => local.t_c,
+            Op::Local(2) => local.u_mm,
+            Op::Local(_) => local.slip_mps,
+            Op::Operating(0) => op.v_mps,
+            Op::Operating(1) => op.fn_kn,
+            Op::Operating(2) => op.cx,
+            Op::Operating(3) => op.cy,
+            Op::Operating(_) => op.spin_per_m,
+            Op::Column(i) => cols.get(i as usize).copied().unwrap_or(f64::NAN),
+            _ => f64::NAN,
+        })
     }
 }
 
@@ -415,6 +619,71 @@ mod tests {
         )
         .unwrap();
         assert!(g.local);
+    }
+
+    #[test]
+    fn factor_reads_each_variable_from_its_slot() {
+        use crate::custom::{LocalState, OperatingPoint};
+        use crate::modifier::Modifier;
+        // every variable with its own weight: a variable read from the wrong slot changes
+        // the sum
+        let src = "p_GPa + 10*T_C + 100*u_mm + 1e3*slip_mps + 1e4*v_mps + 1e5*fn_kN \
+                   + 1e6*cx + 1e7*cy + 1e8*spin_per_m + 1e9*rain + 1e10*snow + k";
+        let k = FormulaParam {
+            name: "k".into(),
+            value: 0.5,
+            min: 0.0,
+            max: 1.0,
+        };
+        let f = FormulaEffect::new("all", Target::Mu, src, vec![k]).unwrap();
+        assert_eq!(f.columns, ["rain", "snow"]);
+        let local = LocalState {
+            p_gpa: 1.0,
+            t_c: 2.0,
+            u_mm: 3.0,
+            slip_mps: 4.0,
+        };
+        let named = [("snow".to_string(), 8.0), ("rain".to_string(), 7.0)];
+        let op = OperatingPoint {
+            v_mps: 5.0,
+            fn_kn: 6.0,
+            cx: 1.0,
+            cy: 2.0,
+            spin_per_m: 3.0,
+            columns: &named,
+        };
+        let want = 1.0 + 20.0 + 300.0 + 4e3 + 5e4 + 6e5 + 1e6 + 2e7 + 3e8 + 7e9 + 8e10 + 0.5;
+        // the columns come in the formula's order, resolved by the caller
+        assert_eq!(f.factor(&local, &op, &[7.0, 8.0]), want);
+        let vars = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 1.0, 2.0, 3.0, 7.0, 8.0];
+        assert_eq!(f.eval(&vars), want);
+        // a missing column reads as NaN
+        assert!(f.factor(&local, &op, &[7.0]).is_nan());
+        // min/max/power keep their operand order
+        let g = FormulaEffect::new(
+            "o",
+            Target::Mu,
+            "max(1, 2 - 3) + 2^3 / min(4, 8) - min(2, 1)",
+            vec![],
+        )
+        .unwrap();
+        assert_eq!(g.eval(&[]), 1.0 + 8.0 / 4.0 - 1.0);
+    }
+
+    #[test]
+    fn a_formula_too_deep_for_the_stack_is_refused() {
+        let deep = format!("{}1{}", "(1+".repeat(40), ")".repeat(40));
+        let e = FormulaEffect::new("d", Target::Mu, &deep, vec![])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("nests too deeply"), "{e}");
+        let ok = format!("{}1{}", "(1+".repeat(20), ")".repeat(20));
+        assert_eq!(
+            FormulaEffect::new("d", Target::Mu, &ok, vec![])
+                .unwrap()
+                .eval(&[]),
+            21.0
+        );
     }
 
     #[test]

@@ -19,6 +19,7 @@ use creep_core::effects::{self, Effect};
 use creep_core::error::Result;
 use creep_core::formula::{FormulaEffect, FormulaParam, Target};
 use creep_core::params::P;
+use creep_core::Modifier;
 
 /// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
 pub const CLAIM_FRACTION: f64 = 0.25;
@@ -378,7 +379,7 @@ pub fn diagnose_with(
     let mut untried: Vec<String> = Vec::new();
     if cfg.model != ModelKind::Polach {
         for eff in creep_core::custom::catalogue() {
-            if cfg.custom.iter().any(|u| u.effect.name() == eff.name()) {
+            if cfg.modifiers.iter().any(|u| u.name() == eff.name()) {
                 continue;
             }
             if let Some(c) = eff
@@ -391,14 +392,15 @@ pub fn diagnose_with(
             }
             progress(eff.name());
             let mut c = cfg.clone();
-            c.custom
-                .push(creep_core::custom::CustomUse::by_name(eff.name())?);
+            c.modifiers.push(creep_core::AnyModifier::Rust(
+                creep_core::custom::CustomUse::by_name(eff.name())?,
+            ));
             let mut free = base_free.clone();
-            let e = c.custom.len() - 1;
+            let e = c.modifiers.len() - 1;
             for (k, p) in eff.params().iter().enumerate() {
                 // parameters whose bounds are a reference value (lower bound > 0) stay fixed
                 if p.2 <= 0.0 {
-                    free.push(FreeParam::Custom {
+                    free.push(FreeParam::Modifier {
                         effect: e,
                         param: k,
                     });
@@ -452,10 +454,10 @@ pub fn diagnose_with(
                 };
                 let fe = FormulaEffect::new(&name, t, &factor, vec![k])?;
                 let mut c = cfg.clone();
-                c.formulas.push(fe);
+                c.modifiers.push(creep_core::AnyModifier::Formula(fe));
                 let mut free = base_free.clone();
-                free.push(FreeParam::Formula {
-                    effect: c.formulas.len() - 1,
+                free.push(FreeParam::Modifier {
+                    effect: c.modifiers.len() - 1,
                     param: 0,
                 });
                 let h = heldout(&c, data, &labels, &free, threads, &opts)?;

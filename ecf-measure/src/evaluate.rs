@@ -4,6 +4,7 @@ use crate::measure::{Dataset, Row};
 use creep_core::config::{Config, Geometry};
 use creep_core::error::{CreepError, Result};
 use creep_core::model::Model;
+use creep_core::Modifier;
 use std::collections::BTreeMap;
 
 /// Model result at one measured point.
@@ -71,7 +72,7 @@ fn run_job(
                     e.insert(Model::new(&config_for(cfg, r))?)
                 }
             };
-            if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
+            if !cfg.modifiers.is_empty() {
                 m.set_extra(&extras(data, r))?;
             }
             let o = m.steady(&r.inputs())?;
@@ -93,7 +94,7 @@ fn run_job(
             let mut prev: Option<&Row> = None;
             for &i in idx {
                 let r = &data.rows[i];
-                if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
+                if !cfg.modifiers.is_empty() {
                     m.set_extra(&extras(data, r))?;
                 }
                 let o = match prev {
@@ -131,29 +132,18 @@ pub fn check_columns(cfg: &Config, data: &Dataset) -> Result<()> {
             data.extra_names.join(", ")
         }
     };
-    for f in &cfg.formulas {
-        for c in &f.columns {
-            if !data.extra_names.contains(c) {
-                return Err(CreepError::Data {
-                    source_name: data.source.clone(),
-                    message: format!(
-                        "formula effect '{}' (factor '{}') uses the column '{c}', which this data file does not have (extra columns: {})",
-                        f.name,
-                        crate::measure::cut(&f.source),
-                        have()
-                    ),
-                });
-            }
-        }
-    }
-    for u in &cfg.custom {
-        for c in u.effect.columns() {
+    for m in &cfg.modifiers {
+        for c in m.columns() {
             if !data.extra_names.iter().any(|n| n == c) {
+                let verb = match m {
+                    creep_core::AnyModifier::Formula(_) => "uses",
+                    creep_core::AnyModifier::Rust(_) => "needs",
+                };
                 return Err(CreepError::Data {
                     source_name: data.source.clone(),
                     message: format!(
-                        "Rust effect '{}' needs the column '{c}', which this data file does not have (extra columns: {})",
-                        u.effect.name(),
+                        "{} {verb} the column '{c}', which this data file does not have (extra columns: {})",
+                        m.describe(),
                         have()
                     ),
                 });
@@ -169,70 +159,41 @@ pub fn check_columns(cfg: &Config, data: &Dataset) -> Result<()> {
 /// compliances (L_e, L_p), so they must be finite and >= 0.
 fn bad_factor(cfg: &Config, data: &Dataset, r: &Row) -> Option<(String, f64)> {
     let slip = r.cx.hypot(r.cy) * r.v;
-    for f in &cfg.formulas {
-        let mut vars = vec![
-            0.0,
-            r.t_bulk,
-            0.0,
-            slip,
-            r.v,
-            r.fn_n / 1e3,
-            r.cx,
-            r.cy,
-            r.spin,
-        ];
-        for c in &f.columns {
+    let named: Vec<(String, f64)> = data
+        .extra_names
+        .iter()
+        .cloned()
+        .zip(r.extra.iter().copied())
+        .collect();
+    let op = creep_core::custom::OperatingPoint {
+        v_mps: r.v,
+        fn_kn: r.fn_n / 1e3,
+        cx: r.cx,
+        cy: r.cy,
+        spin_per_m: r.spin,
+        columns: &named,
+    };
+    for m in &cfg.modifiers {
+        let mut cols = Vec::new();
+        for c in m.columns() {
             let k = data.extra_names.iter().position(|n| n == c)?;
-            vars.push(r.extra[k]);
+            cols.push(r.extra[k]);
         }
-        let probes: &[f64] = if f.local { &[0.0, 1.0] } else { &[0.0] };
-        for &p in probes {
-            vars[0] = p;
-            let x = f.eval(&vars);
-            if !(x.is_finite() && x >= 0.0) {
-                return Some((
-                    format!(
-                        "formula effect '{}' (factor '{}')",
-                        f.name,
-                        crate::measure::cut(&f.source)
-                    ),
-                    x,
-                ));
-            }
-        }
-    }
-    if !cfg.custom.is_empty() {
-        let cols: Vec<(String, f64)> = data
-            .extra_names
-            .iter()
-            .cloned()
-            .zip(r.extra.iter().copied())
-            .collect();
-        let op = creep_core::custom::OperatingPoint {
-            v_mps: r.v,
-            fn_kn: r.fn_n / 1e3,
-            cx: r.cx,
-            cy: r.cy,
-            spin_per_m: r.spin,
-            columns: &cols,
+        let probes: &[f64] = if m.uses_local_state() {
+            &[0.0, 1.0]
+        } else {
+            &[0.0]
         };
-        for u in &cfg.custom {
-            let probes: &[f64] = if u.effect.uses_local_state() {
-                &[0.0, 1.0]
-            } else {
-                &[0.0]
+        for &p in probes {
+            let local = creep_core::custom::LocalState {
+                p_gpa: p,
+                t_c: r.t_bulk,
+                u_mm: 0.0,
+                slip_mps: slip,
             };
-            for &p in probes {
-                let local = creep_core::custom::LocalState {
-                    p_gpa: p,
-                    t_c: r.t_bulk,
-                    u_mm: 0.0,
-                    slip_mps: slip,
-                };
-                let x = u.effect.factor(&u.params, &local, &op);
-                if !(x.is_finite() && x >= 0.0) {
-                    return Some((format!("Rust effect '{}'", u.effect.name()), x));
-                }
+            let x = m.factor(&local, &op, &cols);
+            if !(x.is_finite() && x >= 0.0) {
+                return Some((m.describe(), x));
             }
         }
     }
@@ -261,7 +222,7 @@ fn point_key(cfg: &Config, cols: &[usize], r: &Row) -> Vec<u64> {
         a.to_bits(),
         b.to_bits(),
     ];
-    if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
+    if !cfg.modifiers.is_empty() {
         k.extend(cols.iter().map(|&c| r.extra[c].to_bits()));
     }
     k
@@ -306,7 +267,7 @@ impl Memo {
     }
     fn config_id(&self, cfg: &Config) -> usize {
         let mut key = format!("{cfg:?}");
-        for u in &cfg.custom {
+        for u in cfg.rust_effects() {
             key.push('|');
             key.push_str(u.effect.name());
         }
@@ -339,7 +300,11 @@ pub fn predict_with(
     let used: Vec<usize> = (0..data.extra_names.len())
         .filter(|&k| {
             let n = &data.extra_names[k];
-            cfg.formulas.iter().any(|f| f.columns.contains(n)) || !cfg.custom.is_empty()
+            cfg.modifiers.iter().any(|m| match m {
+                creep_core::AnyModifier::Formula(f) => f.columns.contains(n),
+                // a Rust effect may read any column by name
+                creep_core::AnyModifier::Rust(_) => true,
+            })
         })
         .collect();
     let mut jobs = Vec::new();
@@ -353,7 +318,7 @@ pub fn predict_with(
     for (i, r) in data.rows.iter().enumerate() {
         if r.t.is_some() {
             series.entry(r.series.as_str()).or_default().push(i);
-            if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
+            if !cfg.modifiers.is_empty() {
                 if let Some((e, x)) = bad_factor(cfg, data, r) {
                     bad.entry(e).or_insert((Vec::new(), x)).0.push(r.line);
                 }
@@ -375,7 +340,7 @@ pub fn predict_with(
             if known.is_none() {
                 jobs.push(Job::Steady(i));
             }
-            if !cfg.formulas.is_empty() || !cfg.custom.is_empty() {
+            if !cfg.modifiers.is_empty() {
                 if let Some((e, x)) = bad_factor(cfg, data, r) {
                     bad.entry(e).or_insert((Vec::new(), x)).0.push(r.line);
                 }
@@ -470,11 +435,8 @@ pub fn predict_with(
                 .map(|e| creep_core::effects::info(*e).name)
                 .collect::<Vec<_>>()
         );
-        for f in &cfg.formulas {
-            who += &format!(", formula effect '{}'", f.name);
-        }
-        for u in &cfg.custom {
-            who += &format!(", Rust effect '{}'", u.effect.name());
+        for m in &cfg.modifiers {
+            who += &format!(", {}", m.describe());
         }
         return Err(CreepError::Data {
             source_name: data.source.clone(),

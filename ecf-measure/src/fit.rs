@@ -12,25 +12,20 @@ use creep_core::config::{Config, ModelKind};
 use creep_core::effects::Effect;
 use creep_core::error::{CreepError, Result};
 use creep_core::params::{spec, P};
+use creep_core::Modifier;
 
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
 
-/// A parameter that can be fitted: one of the registry's, or a formula effect's own.
+/// A parameter that can be fitted: one of the registry's, or a modifier's own (a formula
+/// or Rust effect, module [`creep_core::modifier`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FreeParam {
     /// A registry parameter.
     Builtin(P),
-    /// Parameter `param` of custom (Rust) effect `effect` (indices into `Config::custom`).
-    Custom {
-        /// Index of the custom effect.
-        effect: usize,
-        /// Index of its parameter.
-        param: usize,
-    },
-    /// Parameter `param` of formula effect `effect` (indices into `Config::formulas`).
-    Formula {
-        /// Index of the formula effect.
+    /// Parameter `param` of modifier `effect` (indices into `Config::modifiers`).
+    Modifier {
+        /// Index of the modifier.
         effect: usize,
         /// Index of its parameter.
         param: usize,
@@ -44,38 +39,31 @@ impl From<P> for FreeParam {
 }
 
 impl FreeParam {
-    /// Name: the registry name, or `EFFECT.PARAM` for a formula parameter.
+    /// Name: the registry name, or `EFFECT.PARAM` for a modifier's parameter.
     pub fn name(&self, cfg: &Config) -> String {
         match *self {
             FreeParam::Builtin(p) => spec(p).name.to_string(),
-            FreeParam::Formula { effect, param } => format!(
-                "{}.{}",
-                cfg.formulas[effect].name, cfg.formulas[effect].params[param].name
-            ),
-            FreeParam::Custom { effect, param } => format!(
-                "{}.{}",
-                cfg.custom[effect].effect.name(),
-                cfg.custom[effect].effect.params()[param].0
-            ),
+            FreeParam::Modifier { effect, param } => {
+                let m = &cfg.modifiers[effect];
+                format!("{}.{}", m.name(), m.param(param).name)
+            }
         }
     }
     /// Current value (display unit).
     pub fn get(&self, cfg: &Config) -> f64 {
         match *self {
             FreeParam::Builtin(p) => cfg.params.get(p),
-            FreeParam::Formula { effect, param } => cfg.formulas[effect].params[param].value,
-            FreeParam::Custom { effect, param } => cfg.custom[effect].params[param],
+            FreeParam::Modifier { effect, param } => cfg.modifiers[effect].param(param).value,
         }
     }
     /// Bounds (display unit): the registry's or the effect's, narrowed by the user.
     pub fn bounds(&self, cfg: &Config) -> (f64, f64) {
         match *self {
             FreeParam::Builtin(p) => cfg.params.bounds(p),
-            FreeParam::Formula { effect, param } => {
-                let q = &cfg.formulas[effect].params[param];
+            FreeParam::Modifier { effect, param } => {
+                let q = cfg.modifiers[effect].param(param);
                 (q.min, q.max)
             }
-            FreeParam::Custom { effect, param } => cfg.custom[effect].bounds[param],
         }
     }
     /// Narrows the bounds for a fit (`--bound NAME=MIN:MAX`): within the parameter's own
@@ -84,14 +72,7 @@ impl FreeParam {
         let name = self.name(cfg);
         let (olo, ohi) = match *self {
             FreeParam::Builtin(p) => (spec(p).min, spec(p).max),
-            FreeParam::Formula { effect, param } => {
-                let q = &cfg.formulas[effect].params[param];
-                (q.min, q.max)
-            }
-            FreeParam::Custom { effect, param } => {
-                let q = cfg.custom[effect].effect.params()[param];
-                (q.2, q.3)
-            }
+            FreeParam::Modifier { effect, param } => cfg.modifiers[effect].param(param).limits,
         };
         let v = self.get(cfg);
         if lo.is_nan() || hi.is_nan() || lo >= hi || lo < olo || hi > ohi || v < lo || v > hi {
@@ -105,11 +86,9 @@ impl FreeParam {
         }
         match *self {
             FreeParam::Builtin(p) => cfg.params.set_bounds(p, lo, hi)?,
-            FreeParam::Formula { effect, param } => {
-                let q = &mut cfg.formulas[effect].params[param];
-                (q.min, q.max) = (lo, hi);
+            FreeParam::Modifier { effect, param } => {
+                cfg.modifiers[effect].set_bounds(param, lo, hi)
             }
-            FreeParam::Custom { effect, param } => cfg.custom[effect].bounds[param] = (lo, hi),
         }
         Ok(())
     }
@@ -124,43 +103,33 @@ impl FreeParam {
     pub fn unit(&self) -> &'static str {
         match *self {
             FreeParam::Builtin(p) => spec(p).unit,
-            FreeParam::Formula { .. } | FreeParam::Custom { .. } => "-",
+            FreeParam::Modifier { .. } => "-",
         }
     }
     fn set(&self, cfg: &mut Config, v: f64) -> Result<()> {
         match *self {
             FreeParam::Builtin(p) => cfg.params.set(p, v),
-            FreeParam::Formula { effect, param } => {
-                cfg.formulas[effect].set_param(param, v);
-                Ok(())
-            }
-            FreeParam::Custom { effect, param } => {
-                cfg.custom[effect].params[param] = v;
+            FreeParam::Modifier { effect, param } => {
+                cfg.modifiers[effect].set_param(param, v);
                 Ok(())
             }
         }
     }
-    /// Resolves a name: a registry parameter, `EFFECT.PARAM`, or a formula parameter name
-    /// that is unique among the formula effects.
+    /// Resolves a name: a registry parameter, `EFFECT.PARAM`, or a formula effect's parameter
+    /// name alone where it is unique among the formula effects.
     pub fn resolve(cfg: &Config, name: &str) -> Result<FreeParam> {
         if let Some(p) = creep_core::params::by_name(name) {
             return Ok(FreeParam::Builtin(p));
         }
         let mut found = Vec::new();
-        for (e, f) in cfg.formulas.iter().enumerate() {
-            for (k, q) in f.params.iter().enumerate() {
-                if name == format!("{}.{}", f.name, q.name) || name == q.name {
-                    found.push(FreeParam::Formula {
-                        effect: e,
-                        param: k,
-                    });
-                }
-            }
-        }
-        for (e, c) in cfg.custom.iter().enumerate() {
-            for (k, q) in c.effect.params().iter().enumerate() {
-                if name == format!("{}.{}", c.effect.name(), q.0) {
-                    found.push(FreeParam::Custom {
+        for (e, m) in cfg.modifiers.iter().enumerate() {
+            // a formula parameter may be named alone (formulas name their own parameters;
+            // a Rust effect's are named by its author, so they need the effect's name)
+            let bare = matches!(m, creep_core::AnyModifier::Formula(_));
+            for k in 0..m.n_params() {
+                let q = m.param(k).name;
+                if name == format!("{}.{q}", m.name()) || (bare && name == q) {
+                    found.push(FreeParam::Modifier {
                         effect: e,
                         param: k,
                     });
@@ -175,10 +144,8 @@ impl FreeParam {
                 accepted: creep_core::params::SPECS
                     .iter()
                     .map(|s| s.name.to_string())
-                    .chain(cfg.formulas.iter().flat_map(|f| {
-                        f.params
-                            .iter()
-                            .map(move |q| format!("{}.{}", f.name, q.name))
+                    .chain(cfg.modifiers.iter().flat_map(|m| {
+                        (0..m.n_params()).map(move |k| format!("{}.{}", m.name(), m.param(k).name))
                     }))
                     .collect::<Vec<_>>()
                     .join(", "),

@@ -4,7 +4,7 @@ use crate::vars::{Geo, In, Slot, Start, Value, Var, N_AUX, N_GEO, N_INPUTS};
 use creep_core::effects::Effect;
 use creep_core::engine::Scheme;
 use creep_core::params::{self, P};
-use creep_core::{Config, Geometry, Grid, ModelKind};
+use creep_core::{Config, Geometry, Grid, ModelKind, Modifier};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -120,14 +120,9 @@ pub fn parse_columns(text: &str) -> Result<Vec<(String, ColumnSource)>, String> 
 pub fn columns_used(cfg: &Config) -> Vec<String> {
     let mut v: Vec<String> = Vec::new();
     let names = cfg
-        .formulas
+        .modifiers
         .iter()
-        .flat_map(|f| f.columns.iter().cloned())
-        .chain(
-            cfg.custom
-                .iter()
-                .flat_map(|c| c.effect.columns().iter().map(|s| s.to_string())),
-        );
+        .flat_map(|m| m.columns().into_iter().map(|s| s.to_string()));
     for n in names {
         if !v.contains(&n) {
             v.push(n);
@@ -143,7 +138,7 @@ pub fn extras_for(
     columns: &str,
     inputs: &[f64; N_INPUTS],
 ) -> Result<Option<Vec<(String, f64)>>, String> {
-    if cfg.formulas.is_empty() && cfg.custom.is_empty() {
+    if cfg.modifiers.is_empty() {
         return Ok(None);
     }
     let map = parse_columns(columns)?;

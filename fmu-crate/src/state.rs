@@ -17,7 +17,7 @@ use crate::settings::{extras_for, Settings};
 use creep_core::bytes::{Reader, Writer};
 use creep_core::effects::{self, Effect, EffectSet};
 use creep_core::params::{self, Params, P};
-use creep_core::{Bound, Config, Geometry, Grid, Model, ModelKind};
+use creep_core::{AnyModifier, Bound, Config, Geometry, Grid, Model, ModelKind, Modifier};
 
 /// Magic bytes at the start of a serialized FMU state.
 pub const MAGIC: &[u8; 8] = b"ECFFMUST";
@@ -73,23 +73,26 @@ fn put_config(w: &mut W, c: &Config) {
     w.str(&c.preset);
     // formula and custom effects: the configuration as JSON (for their expressions and
     // names), their parameter values bit-exact beside it
-    let has_mod = !(c.formulas.is_empty() && c.custom.is_empty());
+    let has_mod = !c.modifiers.is_empty();
     w.u8(has_mod as u8);
     if has_mod {
         w.str(&c.to_json().to_string());
-        for f in &c.formulas {
-            w.u32(f.params.len() as u32);
-            for p in &f.params {
-                w.f64(p.value);
-            }
-        }
-        for cu in &c.custom {
-            w.u32(cu.params.len() as u32);
-            for x in &cu.params {
-                w.f64(*x);
+        // formula effects first, then Rust effects (the order of the JSON above)
+        for m in modifiers_by_kind(&c.modifiers).map(|k| &c.modifiers[k]) {
+            w.u32(m.n_params() as u32);
+            for k in 0..m.n_params() {
+                w.f64(m.param(k).value);
             }
         }
     }
+}
+
+/// The modifiers in the state's order: formula effects, then Rust effects, each in list order.
+fn modifiers_by_kind(list: &[AnyModifier]) -> impl Iterator<Item = usize> + '_ {
+    let formula = |m: &AnyModifier| matches!(m, AnyModifier::Formula(_));
+    (0..list.len())
+        .filter(move |&k| formula(&list[k]))
+        .chain((0..list.len()).filter(move |&k| !formula(&list[k])))
 }
 
 fn get_config(r: &mut R) -> Result<Config, String> {
@@ -141,46 +144,28 @@ fn get_config(r: &mut R) -> Result<Config, String> {
         b => return Err(format!("bad geometry byte {b}")),
     };
     let preset = r.str()?;
-    let (mut formulas, mut custom) = (Vec::new(), Vec::new());
+    let mut modifiers = Vec::new();
     if r.bool()? {
         let json = r.str()?;
         let full = Config::from_json_str(&json, "FMU state").map_err(|e| e.to_string())?;
-        formulas = full.formulas;
-        custom = full.custom;
-        for f in formulas.iter_mut() {
+        modifiers = full.modifiers;
+        let order: Vec<usize> = modifiers_by_kind(&modifiers).collect();
+        for k in order {
+            let m = &mut modifiers[k];
             let n = r.u32()? as usize;
-            if n != f.params.len() {
+            if n != m.n_params() {
                 return Err(format!(
-                    "formula effect {}: {n} parameters, the expression has {}",
-                    f.name,
-                    f.params.len()
+                    "{}: {n} parameters, it has {}",
+                    m.describe(),
+                    m.n_params()
                 ));
             }
-            for k in 0..n {
+            for j in 0..n {
                 let x = r.f64()?;
                 if !x.is_finite() {
-                    return Err(format!("formula effect {}: parameter {k} = {x}", f.name));
+                    return Err(format!("{}: parameter {j} = {x}", m.describe()));
                 }
-                f.set_param(k, x);
-            }
-        }
-        for cu in custom.iter_mut() {
-            let n = r.u32()? as usize;
-            if n != cu.params.len() {
-                return Err(format!(
-                    "custom effect {}: {n} parameters, it has {}",
-                    cu.effect.name(),
-                    cu.params.len()
-                ));
-            }
-            for x in cu.params.iter_mut() {
-                *x = r.f64()?;
-                if !x.is_finite() {
-                    return Err(format!(
-                        "custom effect {}: a parameter is {x}",
-                        cu.effect.name()
-                    ));
-                }
+                m.set_param(j, x);
             }
         }
     }
@@ -192,8 +177,7 @@ fn get_config(r: &mut R) -> Result<Config, String> {
         bound,
         grid,
         geometry,
-        formulas,
-        custom,
+        modifiers,
     })
 }
 

@@ -567,8 +567,7 @@ pub fn default_config() -> Config {
         bound: creep_core::Bound::Elliptic,
         grid: creep_core::config::DEFAULT_GRID,
         geometry: DEFAULT_GEOMETRY,
-        formulas: Vec::new(),
-        custom: Vec::new(),
+        modifiers: Vec::new(),
     })
 }
 

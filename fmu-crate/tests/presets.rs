@@ -133,7 +133,7 @@ fn a_data_column_comes_from_an_auxiliary_input_or_a_constant() {
         "/../examples/measurements/dry-humid.json"
     );
     let mut cfg = Config::from_file(std::path::Path::new(path)).unwrap();
-    cfg.formulas[0].set_param(0, 0.3);
+    creep_core::Modifier::set_param(&mut cfg.modifiers[0], 0, 0.3);
     let want = |h: f64| {
         let mut m = Model::new(&cfg).unwrap();
         m.set_extra(&[("humidity".to_string(), h)]).unwrap();

@@ -167,15 +167,8 @@ pub struct Contact {
     /// Rolling backwards (the last non-zero speed was negative): the grid and `inputs`,
     /// `out` are held in the mirrored frame x -> -x, where the contact rolls forwards.
     reversed: bool,
-    /// Values of the extra (data) columns the formula effects use, by name.
-    extra: Vec<(String, f64)>,
-    /// Formula variables: local placeholders, operating point, columns (see `formula`).
-    fvars: Vec<f64>,
-    /// Product of the operating-point-only formula factors per target
-    /// (tau_c1, tau_c2, L_e, L_p, mu).
-    fstatic: [f64; 5],
-    /// True if some formula uses local bristle state.
-    flocal: bool,
+    /// The configuration's formula and Rust effects at the current operating point.
+    modifiers: modifiers::Modifiers,
     /// True if moves with heat flow take the scalar temperature solve of `softening`: a
     /// layer that only softens as it heats, the same-characteristic rule, no modifier of the
     /// local bristle state.
@@ -246,12 +239,8 @@ impl Contact {
             bound_cache_p0: f64::NAN,
             fac_cache: vec![Vec::new(); ny],
             pool: None,
-            extra: Vec::new(),
-            fvars: Vec::new(),
-            fstatic: [1.0; 5],
+            modifiers: modifiers::Modifiers::new(&cfg.modifiers),
             softening_fast: false,
-            flocal: cfg.formulas.iter().any(|f| f.local)
-                || cfg.custom.iter().any(|c| c.effect.uses_local_state()),
             t_tol: {
                 let r = Resolved::from_config(cfg);
                 let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
@@ -597,7 +586,7 @@ impl Contact {
         self.softening_fast = on
             && r.monotone_softening()
             && r.rule == crate::bristle::Rule::SameCharacteristic
-            && !self.flocal;
+            && !self.modifiers.any_local();
         was
     }
 

@@ -1,102 +1,168 @@
-//! Formula and custom effects: modifiers of the material at a bristle, evaluated per operating point and, where local, per bristle.
+//! The configuration's modifiers (formula and Rust effects, module [`crate::modifier`]) at the contact's operating point: their factors on the material, once per operating point and, where local, per bristle.
 
 use super::Contact;
 use crate::bristle::Material;
+use crate::custom::{LocalState, OperatingPoint};
 use crate::error::{CreepError, Result};
 use crate::material::NodeP;
+use crate::modifier::{AnyModifier, Modifier};
 
-impl Contact {
-    /// True if formula or custom effects modify the material.
+/// The modifiers of a contact and what they need at its current operating point: each one's
+/// data-column values (looked up by name when the operating point or the data change, not per
+/// evaluation), the product of the factors that do not read the bristle's local state, and
+/// the list of those that do.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Modifiers {
+    /// The configuration's modifiers, in its order.
+    list: Vec<AnyModifier>,
+    /// Values of the extra (data) columns, by name, as last given ([`Contact::set_extra`]).
+    extra: Vec<(String, f64)>,
+    /// Per modifier: the values of its [`Modifier::columns`], in their order.
+    cols: Vec<Vec<f64>>,
+    /// The user's operating point (v < 0 when rolling backwards, not the mirrored frame's):
+    /// v (m/s), F_N (kN), c_x, c_y, spin (1/m).
+    op: [f64; 5],
+    /// Product of the factors of the modifiers that do not read the local state, per target
+    /// (tau_c1, tau_c2, L_e, L_p, mu).
+    fstatic: [f64; 5],
+    /// Indices of the modifiers that read the local state.
+    local: Vec<usize>,
+}
+
+impl Modifiers {
+    /// The collection of a configuration's modifiers, factors 1 until
+    /// [`Modifiers::at`] is called.
+    pub(super) fn new(list: &[AnyModifier]) -> Self {
+        Modifiers {
+            list: list.to_vec(),
+            extra: Vec::new(),
+            cols: vec![Vec::new(); list.len()],
+            op: [0.0; 5],
+            fstatic: [1.0; 5],
+            local: (0..list.len())
+                .filter(|&k| list[k].uses_local_state())
+                .collect(),
+        }
+    }
+
+    /// True if there are none.
     #[inline]
-    pub(super) fn has_modifiers(&self) -> bool {
-        !(self.cfg.formulas.is_empty() && self.cfg.custom.is_empty())
+    pub(super) fn is_empty(&self) -> bool {
+        self.list.is_empty()
     }
 
-    /// Sets the values of extra (data) columns that formula effects use.
-    pub fn set_extra(&mut self, values: &[(String, f64)]) -> Result<()> {
+    /// True if some modifier reads the bristle's local state.
+    #[inline]
+    pub(super) fn any_local(&self) -> bool {
+        !self.local.is_empty()
+    }
+
+    fn operating_point(&self) -> OperatingPoint<'_> {
+        OperatingPoint {
+            v_mps: self.op[0],
+            fn_kn: self.op[1],
+            cx: self.op[2],
+            cy: self.op[3],
+            spin_per_m: self.op[4],
+            columns: &self.extra,
+        }
+    }
+
+    /// Sets the data-column values (by name) the modifiers read.
+    pub(super) fn set_extra(&mut self, values: &[(String, f64)]) {
         self.extra = values.to_vec();
-        self.update_formula_vars()
     }
 
-    pub(super) fn update_formula_vars(&mut self) -> Result<()> {
-        if self.cfg.formulas.is_empty() && self.cfg.custom.is_empty() {
+    /// Moves the collection to the operating point `op` (v m/s, F_N kN, c_x, c_y, spin 1/m):
+    /// resolves every modifier's columns and multiplies the factors of those that do not
+    /// read the local state. Err names a column a modifier reads and the data lack.
+    pub(super) fn at(&mut self, op: [f64; 5]) -> Result<()> {
+        if self.list.is_empty() {
             return Ok(());
         }
-        // the user's operating point (v < 0 when rolling backwards), not the mirrored frame's
-        let i = &super::mirror_inputs(&self.inputs, self.reversed);
-        let mut v = vec![0.0; crate::formula::LOCAL.len()];
-        v.extend([i.v, i.fn_n / 1e3, i.cx, i.cy, i.spin]);
-        let mut fstatic = [1.0; 5];
-        for f in &self.cfg.formulas {
-            let mut vars = v.clone();
-            for c in &f.columns {
+        self.op = op;
+        for (k, m) in self.list.iter().enumerate() {
+            let mut vals = Vec::new();
+            for c in m.columns() {
                 let x = self
                     .extra
                     .iter()
                     .find(|(n, _)| n == c)
                     .map(|(_, x)| *x)
-                    .ok_or_else(|| CreepError::Config {
-                        source_name: format!("formula_effects.{}", f.name),
-                        message: format!(
-                            "uses the column '{c}', which the data do not provide (have: {})",
-                            self.extra
-                                .iter()
-                                .map(|e| e.0.as_str())
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        ),
+                    .ok_or_else(|| {
+                        let (key, verb) = match m {
+                            AnyModifier::Formula(_) => ("formula_effects", "uses"),
+                            AnyModifier::Rust(_) => ("custom_effects", "needs"),
+                        };
+                        CreepError::Config {
+                            source_name: format!("{key}.{}", m.name()),
+                            message: format!(
+                                "{verb} the column '{c}', which the data do not provide (have: {})",
+                                self.extra
+                                    .iter()
+                                    .map(|e| e.0.as_str())
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            ),
+                        }
                     })?;
-                vars.push(x);
+                vals.push(x);
             }
-            if !f.local {
-                fstatic[f.target as usize] *= f.eval(&vars).max(0.0);
-            }
+            self.cols[k] = vals;
         }
-        for c in &self.cfg.custom {
-            for col in c.effect.columns() {
-                if !self.extra.iter().any(|(n, _)| n == col) {
-                    return Err(CreepError::Config {
-                        source_name: format!("custom_effects.{}", c.effect.name()),
-                        message: format!(
-                            "needs the column '{col}', which the data do not provide (have: {})",
-                            self.extra
-                                .iter()
-                                .map(|e| e.0.as_str())
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        ),
-                    });
-                }
-            }
-            if !c.effect.uses_local_state() {
-                fstatic[c.effect.target() as usize] *= c
-                    .effect
-                    .factor(
-                        &c.params,
-                        &crate::custom::LocalState::default(),
-                        &self.operating_point(),
-                    )
+        let mut fstatic = [1.0; 5];
+        let op = self.operating_point();
+        for (k, m) in self.list.iter().enumerate() {
+            if !m.uses_local_state() {
+                fstatic[m.target() as usize] *= m
+                    .factor(&LocalState::default(), &op, &self.cols[k])
                     .max(0.0);
             }
         }
         self.fstatic = fstatic;
-        self.fvars = v;
         Ok(())
     }
 
-    pub(super) fn operating_point(&self) -> crate::custom::OperatingPoint<'_> {
-        let i = &self.inputs;
-        crate::custom::OperatingPoint {
-            v_mps: i.v,
-            fn_kn: i.fn_n / 1e3,
-            cx: i.cx,
-            cy: i.cy,
-            spin_per_m: i.spin,
-            columns: &self.extra,
+    /// The factors per target at a bristle in state `local`: the operating point's product
+    /// times the local modifiers' factors (each clamped to >= 0), in list order.
+    #[inline]
+    pub(super) fn factors(&self, local: &LocalState) -> [f64; 5] {
+        let mut fac = self.fstatic;
+        if !self.local.is_empty() {
+            let op = self.operating_point();
+            for &k in &self.local {
+                let m = &self.list[k];
+                fac[m.target() as usize] *= m.factor(local, &op, &self.cols[k]).max(0.0);
+            }
         }
+        fac
+    }
+}
+
+impl Contact {
+    /// True if formula or custom effects modify the material.
+    #[inline]
+    pub(super) fn has_modifiers(&self) -> bool {
+        !self.modifiers.is_empty()
     }
 
-    /// Scales a material by the formula effects (local ones evaluated at this bristle).
+    /// Sets the values of extra (data) columns that formula and Rust effects read.
+    pub fn set_extra(&mut self, values: &[(String, f64)]) -> Result<()> {
+        self.modifiers.set_extra(values);
+        self.update_formula_vars()
+    }
+
+    /// Moves the modifiers to the current inputs (the user's operating point).
+    pub(super) fn update_formula_vars(&mut self) -> Result<()> {
+        if self.modifiers.is_empty() {
+            return Ok(());
+        }
+        let i = super::mirror_inputs(&self.inputs, self.reversed);
+        self.modifiers.at([i.v, i.fn_n / 1e3, i.cx, i.cy, i.spin])
+    }
+
+    /// Scales a material by the modifiers' factors (local ones evaluated at this bristle:
+    /// pressure `p` Pa, temperature `t` degC, |u| = `u` m, rigid slip speed `slip` m/s).
     #[inline]
     pub(super) fn apply_formulas(
         &self,
@@ -107,47 +173,15 @@ impl Contact {
         u: f64,
         slip: f64,
     ) -> Material {
-        if self.cfg.formulas.is_empty() && self.cfg.custom.is_empty() {
+        if self.modifiers.is_empty() {
             return m;
         }
-        let mut fac = self.fstatic;
-        if self.flocal {
-            let mut vars = self.fvars.clone();
-            vars[0] = p / 1e9;
-            vars[1] = t;
-            vars[2] = u * 1e3;
-            vars[3] = slip;
-            for f in self.cfg.formulas.iter().filter(|f| f.local) {
-                let mut vv = vars.clone();
-                for c in &f.columns {
-                    vv.push(
-                        self.extra
-                            .iter()
-                            .find(|(n, _)| n == c)
-                            .map(|(_, x)| *x)
-                            .unwrap_or(f64::NAN),
-                    );
-                }
-                fac[f.target as usize] *= f.eval(&vv).max(0.0);
-            }
-            let local = crate::custom::LocalState {
-                p_gpa: p / 1e9,
-                t_c: t,
-                u_mm: u * 1e3,
-                slip_mps: slip,
-            };
-            for c in self
-                .cfg
-                .custom
-                .iter()
-                .filter(|c| c.effect.uses_local_state())
-            {
-                fac[c.effect.target() as usize] *= c
-                    .effect
-                    .factor(&c.params, &local, &self.operating_point())
-                    .max(0.0);
-            }
-        }
+        let fac = self.modifiers.factors(&LocalState {
+            p_gpa: p / 1e9,
+            t_c: t,
+            u_mm: u * 1e3,
+            slip_mps: slip,
+        });
         if coulomb {
             m.tc1 *= fac[4];
             m.tc2 *= fac[4];
@@ -160,13 +194,13 @@ impl Contact {
         m
     }
 
-    /// The material at temperature `t` with the factors of the formula and custom effects that
-    /// depend on the operating point only (all of them unless some reads the local bristle
-    /// state): the same numbers as [`Self::material`] then (a factor of 1 changes nothing).
+    /// The material at temperature `t` with the factors of the modifiers that depend on the
+    /// operating point only (all of them unless some reads the local bristle state): the
+    /// same numbers as [`Self::material`] then (a factor of 1 changes nothing).
     #[inline(always)]
     pub(super) fn material_static(&self, np: &NodeP, t: f64) -> Material {
         let mut m = self.r.material_base(np, t);
-        let f = &self.fstatic;
+        let f = &self.modifiers.fstatic;
         m.tc2 *= f[1];
         m.tc1 = (m.tc1 * f[0]).min(m.tc2);
         m.lp *= f[3];
@@ -174,7 +208,7 @@ impl Contact {
         m
     }
 
-    /// Full material at temperature `t` (Eq. 4.3, 4.4) with the formula effects at a bristle
+    /// Full material at temperature `t` (Eq. 4.3, 4.4) with the modifiers at a bristle
     /// with displacement |u| = `u` (m) and rigid slip speed `slip` (m/s).
     #[inline]
     pub(super) fn material(&self, np: &NodeP, t: f64, u: f64, slip: f64) -> Material {

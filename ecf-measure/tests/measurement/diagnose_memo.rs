@@ -2,6 +2,7 @@
 use crate::common::*;
 use creep_core::formula::{FormulaEffect, FormulaParam, Target};
 use creep_core::Config;
+use creep_core::Modifier;
 use ecf_measure::diagnose::{diagnose, diagnose_with};
 use ecf_measure::evaluate::{predict, predict_with, Memo};
 use ecf_measure::fit::{default_free, fit_params, fit_params_with, FitOptions, FreeParam};
@@ -17,7 +18,7 @@ fn humid() -> Dataset {
 /// humidity column (so that the data column is part of the operating point).
 fn with_formula(cfg: &Config) -> (Config, Vec<FreeParam>) {
     let mut c = cfg.clone();
-    c.formulas.push(
+    c.modifiers.push(creep_core::AnyModifier::Formula(
         FormulaEffect::new(
             "tau_c2_by_humidity",
             Target::TauC2,
@@ -30,12 +31,12 @@ fn with_formula(cfg: &Config) -> (Config, Vec<FreeParam>) {
             }],
         )
         .expect("formula"),
-    );
+    ));
     let mut free: Vec<FreeParam> = default_free(&c)
         .into_iter()
         .map(FreeParam::Builtin)
         .collect();
-    free.push(FreeParam::Formula {
+    free.push(FreeParam::Modifier {
         effect: 0,
         param: 0,
     });
@@ -69,7 +70,7 @@ fn memoised_predictions_are_bit_identical() {
     assert_eq!(b, predict(&base, &data, 2).unwrap());
     // another value of one parameter is another configuration
     let mut other = cfg.clone();
-    other.formulas[0].set_param(0, -0.1);
+    other.modifiers[0].set_param(0, -0.1);
     let o = predict_with(&other, &data, 1, Some(&memo)).unwrap();
     assert_eq!(memo.counts(), (36, 84));
     assert_eq!(o, predict(&other, &data, 1).unwrap());
