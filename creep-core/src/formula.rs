@@ -333,6 +333,8 @@ impl Parser<'_> {
                     }
                     self.i += 1;
                     let Some((func, n)) = Func::parse(&name) else {
+                        // point at the name, not past the call
+                        self.i = st;
                         return Err(self.err(&format!(
                             "unknown function '{name}' (exp, ln, sqrt, abs, tanh, min, max)"
                         )));
@@ -457,7 +459,14 @@ impl FormulaEffect {
         };
         let expr = p.expr().map_err(|e| CreepError::Config {
             source_name: format!("formula_effects.{name}.factor"),
-            message: format!("'{factor}' {e}"),
+            // the parser's own message ("at character N: ..."), without a second prefix
+            message: format!(
+                "'{factor}' {}",
+                match e {
+                    CreepError::Config { message, .. } => message,
+                    other => other.to_string(),
+                }
+            ),
         })?;
         if p.peek().is_some() {
             return Err(CreepError::Config {
@@ -690,7 +699,8 @@ mod tests {
     fn errors_point_at_the_problem() {
         for (src, needle) in [
             ("1 +", "end"),
-            ("foo(1)", "unknown function"),
+            ("foo(1)", "at character 1: unknown function"),
+            ("2 * foo(1)", "at character 5: unknown function"),
             ("(1", "')'"),
             ("1 2", "unexpected"),
             ("min(1)", "2 argument"),
@@ -699,6 +709,7 @@ mod tests {
                 .unwrap_err()
                 .to_string();
             assert!(e.contains(needle), "{src}: {e}");
+            assert_eq!(e.matches("configuration").count(), 1, "{src}: {e}");
         }
         let k = FormulaParam {
             name: "k".into(),
