@@ -8,9 +8,11 @@
 //! with `+` or `-`, which adds or removes effects. Parameter values are numbers in the unit
 //! their name carries, or the string "inf".
 
+use crate::custom::CustomUse;
 use crate::effects::{self, Effect, EffectSet};
 use crate::error::{CreepError, Result};
-use crate::modifier::{AnyModifier, Modifier};
+use crate::formula::FormulaEffect;
+use crate::modifier::{LocalState, Modifier, ModifierParam, OperatingPoint, Target};
 use crate::params::{self, Params};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
@@ -162,7 +164,7 @@ pub struct Config {
     /// (configuration key `formula_effects`, module [`crate::formula`]) and effects written in
     /// Rust (`custom_effects`, module [`crate::custom`]), in one list; a configuration file's
     /// formula effects come first, then its Rust effects, each in file order.
-    pub modifiers: Vec<crate::modifier::AnyModifier>,
+    pub modifiers: Vec<AnyModifier>,
 }
 
 #[derive(Debug, Default, Deserialize, Serialize)]
@@ -310,6 +312,67 @@ fn parse_geometry(src: &str, m: &Map<String, Value>) -> Result<Geometry> {
     match (geo_num(src, m, "a_mm")?, geo_num(src, m, "b_mm")?, geo_num(src, m, "fn_ref_kN")?) {
         (Some(a), Some(b), Some(f)) => Ok(Geometry::SemiAxes { a: a * 1e-3, b: b * 1e-3, fn_ref: f * 1e3 }),
         _ => Err(cfg_err(src, "geometry: give a_mm, b_mm and fn_ref_kN, or rx_mm and ry_mm, or line_radius_mm and line_width_mm".into())),
+    }
+}
+
+/// A modifier of either kind, as a configuration holds it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AnyModifier {
+    /// A formula effect (configuration key `formula_effects`).
+    Formula(FormulaEffect),
+    /// A Rust effect (configuration key `custom_effects`).
+    Rust(CustomUse),
+}
+
+impl AnyModifier {
+    fn inner(&self) -> &dyn Modifier {
+        match self {
+            AnyModifier::Formula(f) => f,
+            AnyModifier::Rust(c) => c,
+        }
+    }
+    fn inner_mut(&mut self) -> &mut dyn Modifier {
+        match self {
+            AnyModifier::Formula(f) => f,
+            AnyModifier::Rust(c) => c,
+        }
+    }
+}
+
+impl Modifier for AnyModifier {
+    fn name(&self) -> &str {
+        self.inner().name()
+    }
+    fn describe(&self) -> String {
+        self.inner().describe()
+    }
+    fn target(&self) -> Target {
+        self.inner().target()
+    }
+    fn uses_local_state(&self) -> bool {
+        self.inner().uses_local_state()
+    }
+    fn columns(&self) -> Vec<&str> {
+        self.inner().columns()
+    }
+    fn n_params(&self) -> usize {
+        self.inner().n_params()
+    }
+    fn param(&self, k: usize) -> ModifierParam {
+        self.inner().param(k)
+    }
+    fn set_param(&mut self, k: usize, v: f64) {
+        self.inner_mut().set_param(k, v)
+    }
+    fn set_bounds(&mut self, k: usize, lo: f64, hi: f64) {
+        self.inner_mut().set_bounds(k, lo, hi)
+    }
+    #[inline]
+    fn factor(&self, local: &LocalState, op: &OperatingPoint, cols: &[f64]) -> f64 {
+        match self {
+            AnyModifier::Formula(f) => f.factor(local, op, cols),
+            AnyModifier::Rust(c) => c.factor(local, op, cols),
+        }
     }
 }
 
@@ -657,6 +720,26 @@ impl Config {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn formula_and_rust_effects_share_one_name_space() {
+        let json = r#"{"preset": "dry",
+            "formula_effects": [{"name": "humidity_softening", "target": "tau_c2", "factor": "1"}],
+            "custom_effects": [{"name": "humidity_softening", "params": {"k": 0.3}}]}"#;
+        let e = Config::from_json_str(json, "x").unwrap_err().to_string();
+        assert!(e.contains("share one name space"), "{e}");
+        let ok = json.replacen("\"humidity_softening\", \"target\"", "\"h\", \"target\"", 1);
+        let c = Config::from_json_str(&ok, "x").unwrap();
+        // one list, formula effects first, reached through the trait
+        let names: Vec<&str> = c.modifiers.iter().map(|m| m.name()).collect();
+        assert_eq!(names, ["h", "humidity_softening"]);
+        assert!(c.modifiers[0].describe().starts_with("formula effect 'h'"));
+        assert_eq!(c.modifiers[1].param(0).name, "k");
+        assert_eq!(c.modifiers[1].param(0).value, 0.3);
+        assert_eq!(c.modifiers[1].param(0).limits, (-1.0, 1.0));
+        assert_eq!(c.modifiers[1].columns(), ["humidity"]);
+    }
+
     use super::*;
 
     #[test]

@@ -12,47 +12,8 @@
 //! [`HumiditySoftening`] and docs/measurements.md.
 
 use crate::error::{CreepError, Result};
-use crate::formula::Target;
-
-/// Local state of a bristle.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct LocalState {
-    /// Normal pressure, GPa.
-    pub p_gpa: f64,
-    /// Temperature, degC.
-    pub t_c: f64,
-    /// |u|, mm.
-    pub u_mm: f64,
-    /// Rigid slip speed, m/s.
-    pub slip_mps: f64,
-}
-
-/// Operating point of the contact.
-#[derive(Clone, Copy, Debug)]
-pub struct OperatingPoint<'a> {
-    /// Vehicle speed, m/s.
-    pub v_mps: f64,
-    /// Normal force, kN.
-    pub fn_kn: f64,
-    /// Longitudinal creepage, -.
-    pub cx: f64,
-    /// Lateral creepage, -.
-    pub cy: f64,
-    /// Spin, 1/m.
-    pub spin_per_m: f64,
-    /// Data columns (name, value) of the current measurement row.
-    pub columns: &'a [(String, f64)],
-}
-
-impl OperatingPoint<'_> {
-    /// Value of a data column.
-    pub fn column(&self, name: &str) -> Option<f64> {
-        self.columns
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, v)| *v)
-    }
-}
+pub use crate::modifier::{LocalState, OperatingPoint};
+use crate::modifier::{Modifier, ModifierParam, Target};
 
 /// An effect written in Rust.
 pub trait CustomEffect: Send + Sync + std::fmt::Debug {
@@ -217,7 +178,7 @@ impl CustomUse {
     }
 }
 
-impl crate::modifier::Modifier for CustomUse {
+impl Modifier for CustomUse {
     fn name(&self) -> &str {
         self.effect.name()
     }
@@ -236,9 +197,9 @@ impl crate::modifier::Modifier for CustomUse {
     fn n_params(&self) -> usize {
         self.params.len()
     }
-    fn param(&self, k: usize) -> crate::modifier::ModifierParam {
+    fn param(&self, k: usize) -> ModifierParam {
         let spec = self.effect.params()[k];
-        crate::modifier::ModifierParam {
+        ModifierParam {
             name: spec.0.to_string(),
             value: self.params[k],
             min: self.bounds[k].0,

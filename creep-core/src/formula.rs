@@ -10,51 +10,9 @@
 //! file by its name. The factor multiplies the target wherever the engine evaluates it.
 
 use crate::error::{CreepError, Result};
+use crate::modifier::{LocalState, Modifier, ModifierParam, OperatingPoint};
 
-/// Material function a formula scales.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Target {
-    /// First critical shear stress.
-    TauC1,
-    /// Second critical shear stress.
-    TauC2,
-    /// Inverted elastic stiffness of the layer.
-    Le,
-    /// Plasticity factor.
-    Lp,
-    /// Coulomb friction coefficient.
-    Mu,
-}
-
-impl Target {
-    /// Parses a target name.
-    pub fn parse(s: &str) -> Result<Self> {
-        Ok(match s {
-            "tau_c1" => Target::TauC1,
-            "tau_c2" => Target::TauC2,
-            "L_e" => Target::Le,
-            "L_p" => Target::Lp,
-            "mu" => Target::Mu,
-            _ => {
-                return Err(CreepError::Unknown {
-                    kind: "formula target".into(),
-                    name: s.into(),
-                    accepted: "tau_c1, tau_c2, L_e, L_p, mu".into(),
-                })
-            }
-        })
-    }
-    /// Name of the target.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Target::TauC1 => "tau_c1",
-            Target::TauC2 => "tau_c2",
-            Target::Le => "L_e",
-            Target::Lp => "L_p",
-            Target::Mu => "mu",
-        }
-    }
-}
+pub use crate::modifier::Target;
 
 /// Local-state variables (indices 0..4 of the evaluation slice).
 pub const LOCAL: [&str; 4] = ["p_GPa", "T_C", "u_mm", "slip_mps"];
@@ -526,7 +484,7 @@ impl FormulaEffect {
     }
 }
 
-impl crate::modifier::Modifier for FormulaEffect {
+impl Modifier for FormulaEffect {
     fn name(&self) -> &str {
         &self.name
     }
@@ -553,9 +511,9 @@ impl crate::modifier::Modifier for FormulaEffect {
     fn n_params(&self) -> usize {
         self.params.len()
     }
-    fn param(&self, k: usize) -> crate::modifier::ModifierParam {
+    fn param(&self, k: usize) -> ModifierParam {
         let q = &self.params[k];
-        crate::modifier::ModifierParam {
+        ModifierParam {
             name: q.name.clone(),
             value: q.value,
             min: q.min,
@@ -570,12 +528,7 @@ impl crate::modifier::Modifier for FormulaEffect {
         (self.params[k].min, self.params[k].max) = (lo, hi);
     }
     #[inline]
-    fn factor(
-        &self,
-        local: &crate::custom::LocalState,
-        op: &crate::custom::OperatingPoint,
-        cols: &[f64],
-    ) -> f64 {
+    fn factor(&self, local: &LocalState, op: &OperatingPoint, cols: &[f64]) -> f64 {
         run(&self.ops, &self.params, |o| match o {
             Op::Local(0) => local.p_gpa,
             Op::Local(1) => local.t_c,
@@ -632,8 +585,6 @@ mod tests {
 
     #[test]
     fn factor_reads_each_variable_from_its_slot() {
-        use crate::custom::{LocalState, OperatingPoint};
-        use crate::modifier::Modifier;
         // every variable with its own weight: a variable read from the wrong slot changes
         // the sum
         let src = "p_GPa + 10*T_C + 100*u_mm + 1e3*slip_mps + 1e4*v_mps + 1e5*fn_kN \

@@ -38,9 +38,10 @@ pub mod thermal;
 #[doc(hidden)]
 pub use inventory;
 
+pub use config::AnyModifier;
 pub use config::{Bound, Config, Geometry, Grid, ModelKind};
 pub use effects::Effect;
 pub use engine::{Contact, FieldPoint, Inputs, Outputs};
 pub use error::{CreepError, Result};
 pub use model::Model;
-pub use modifier::{AnyModifier, Modifier};
+pub use modifier::Modifier;

@@ -3,7 +3,7 @@
 //! Formula effects ([`crate::formula::FormulaEffect`], written in the configuration) and
 //! Rust effects ([`crate::custom::CustomUse`], a [`crate::custom::CustomEffect`] linked into
 //! the program) are its two kinds. A configuration holds them in one list,
-//! [`crate::Config::modifiers`] ([`AnyModifier`]); the engine evaluates them through
+//! [`crate::Config::modifiers`] ([`crate::config::AnyModifier`]); the engine evaluates them through
 //! [`Modifier::factor`] (module `engine::modifiers`), the fit reaches their parameters
 //! through [`Modifier::param`] and [`Modifier::set_param`]. Nothing else in the engine or the
 //! fit knows which kind a modifier is.
@@ -12,8 +12,92 @@
 //! wherever the engine evaluates it: tau_c1, tau_c2, L_p, L_e (Eq. 4.3, 4.4, 4.21) or mu of the
 //! Coulomb bound.
 
-use crate::custom::{CustomUse, LocalState, OperatingPoint};
-use crate::formula::{FormulaEffect, Target};
+use crate::error::{CreepError, Result};
+
+/// Material function a modifier scales.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// First critical shear stress.
+    TauC1,
+    /// Second critical shear stress.
+    TauC2,
+    /// Inverted elastic stiffness of the layer.
+    Le,
+    /// Plasticity factor.
+    Lp,
+    /// Coulomb friction coefficient.
+    Mu,
+}
+
+impl Target {
+    /// Parses a target name.
+    pub fn parse(s: &str) -> Result<Self> {
+        Ok(match s {
+            "tau_c1" => Target::TauC1,
+            "tau_c2" => Target::TauC2,
+            "L_e" => Target::Le,
+            "L_p" => Target::Lp,
+            "mu" => Target::Mu,
+            _ => {
+                return Err(CreepError::Unknown {
+                    kind: "formula target".into(),
+                    name: s.into(),
+                    accepted: "tau_c1, tau_c2, L_e, L_p, mu".into(),
+                })
+            }
+        })
+    }
+    /// Name of the target.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Target::TauC1 => "tau_c1",
+            Target::TauC2 => "tau_c2",
+            Target::Le => "L_e",
+            Target::Lp => "L_p",
+            Target::Mu => "mu",
+        }
+    }
+}
+
+/// Local state of a bristle.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LocalState {
+    /// Normal pressure, GPa.
+    pub p_gpa: f64,
+    /// Temperature, degC.
+    pub t_c: f64,
+    /// |u|, mm.
+    pub u_mm: f64,
+    /// Rigid slip speed, m/s.
+    pub slip_mps: f64,
+}
+
+/// Operating point of the contact.
+#[derive(Clone, Copy, Debug)]
+pub struct OperatingPoint<'a> {
+    /// Vehicle speed, m/s.
+    pub v_mps: f64,
+    /// Normal force, kN.
+    pub fn_kn: f64,
+    /// Longitudinal creepage, -.
+    pub cx: f64,
+    /// Lateral creepage, -.
+    pub cy: f64,
+    /// Spin, 1/m.
+    pub spin_per_m: f64,
+    /// Data columns (name, value) of the current measurement row.
+    pub columns: &'a [(String, f64)],
+}
+
+impl OperatingPoint<'_> {
+    /// Value of a data column.
+    pub fn column(&self, name: &str) -> Option<f64> {
+        self.columns
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| *v)
+    }
+}
 
 /// One parameter of a modifier, as a fit sees it.
 #[derive(Clone, Debug, PartialEq)]
@@ -56,90 +140,4 @@ pub trait Modifier {
     /// `cols` holds the values of [`Modifier::columns`] in their order, resolved once per
     /// operating point.
     fn factor(&self, local: &LocalState, op: &OperatingPoint, cols: &[f64]) -> f64;
-}
-
-/// A modifier of either kind, as a configuration holds it.
-#[derive(Clone, Debug, PartialEq)]
-pub enum AnyModifier {
-    /// A formula effect (configuration key `formula_effects`).
-    Formula(FormulaEffect),
-    /// A Rust effect (configuration key `custom_effects`).
-    Rust(CustomUse),
-}
-
-impl AnyModifier {
-    fn inner(&self) -> &dyn Modifier {
-        match self {
-            AnyModifier::Formula(f) => f,
-            AnyModifier::Rust(c) => c,
-        }
-    }
-    fn inner_mut(&mut self) -> &mut dyn Modifier {
-        match self {
-            AnyModifier::Formula(f) => f,
-            AnyModifier::Rust(c) => c,
-        }
-    }
-}
-
-impl Modifier for AnyModifier {
-    fn name(&self) -> &str {
-        self.inner().name()
-    }
-    fn describe(&self) -> String {
-        self.inner().describe()
-    }
-    fn target(&self) -> Target {
-        self.inner().target()
-    }
-    fn uses_local_state(&self) -> bool {
-        self.inner().uses_local_state()
-    }
-    fn columns(&self) -> Vec<&str> {
-        self.inner().columns()
-    }
-    fn n_params(&self) -> usize {
-        self.inner().n_params()
-    }
-    fn param(&self, k: usize) -> ModifierParam {
-        self.inner().param(k)
-    }
-    fn set_param(&mut self, k: usize, v: f64) {
-        self.inner_mut().set_param(k, v)
-    }
-    fn set_bounds(&mut self, k: usize, lo: f64, hi: f64) {
-        self.inner_mut().set_bounds(k, lo, hi)
-    }
-    #[inline]
-    fn factor(&self, local: &LocalState, op: &OperatingPoint, cols: &[f64]) -> f64 {
-        match self {
-            AnyModifier::Formula(f) => f.factor(local, op, cols),
-            AnyModifier::Rust(c) => c.factor(local, op, cols),
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::Config;
-
-    #[test]
-    fn formula_and_rust_effects_share_one_name_space() {
-        let json = r#"{"preset": "dry",
-            "formula_effects": [{"name": "humidity_softening", "target": "tau_c2", "factor": "1"}],
-            "custom_effects": [{"name": "humidity_softening", "params": {"k": 0.3}}]}"#;
-        let e = Config::from_json_str(json, "x").unwrap_err().to_string();
-        assert!(e.contains("share one name space"), "{e}");
-        let ok = json.replacen("\"humidity_softening\", \"target\"", "\"h\", \"target\"", 1);
-        let c = Config::from_json_str(&ok, "x").unwrap();
-        // one list, formula effects first, reached through the trait
-        let names: Vec<&str> = c.modifiers.iter().map(|m| m.name()).collect();
-        assert_eq!(names, ["h", "humidity_softening"]);
-        assert!(c.modifiers[0].describe().starts_with("formula effect 'h'"));
-        assert_eq!(c.modifiers[1].param(0).name, "k");
-        assert_eq!(c.modifiers[1].param(0).value, 0.3);
-        assert_eq!(c.modifiers[1].param(0).limits, (-1.0, 1.0));
-        assert_eq!(c.modifiers[1].columns(), ["humidity"]);
-    }
 }

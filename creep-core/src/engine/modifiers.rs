@@ -2,10 +2,11 @@
 
 use super::Contact;
 use crate::bristle::Material;
+use crate::config::AnyModifier;
 use crate::custom::{LocalState, OperatingPoint};
 use crate::error::{CreepError, Result};
 use crate::material::NodeP;
-use crate::modifier::{AnyModifier, Modifier};
+use crate::modifier::Modifier;
 
 /// The modifiers of a contact and what they need at its current operating point: each one's
 /// data-column values (looked up by name when the operating point or the data change, not per
