@@ -628,6 +628,17 @@ mod tests {
         )
         .unwrap();
         assert_eq!(g.eval(&[]), 1.0 + 8.0 / 4.0 - 1.0);
+        // the precedence docs/measurements.md states
+        for (src, want) in [
+            ("2^3^2", 512.0),
+            ("-2^2", 4.0),
+            ("-(2^2) + 5", 1.0),
+            ("2*3^2", 18.0),
+            ("1e-3*1e3", 1.0),
+        ] {
+            let f = FormulaEffect::new("p", Target::Mu, src, vec![]).unwrap();
+            assert_eq!(f.eval(&[]), want, "{src}");
+        }
     }
 
     #[test]
