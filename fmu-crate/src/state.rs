@@ -1,19 +1,23 @@
 //! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
 //!
-//! Layout (version 2): magic `ECFFMUST`, u32 version, f64 time, `N_INPUTS` × f64 inputs in
-//! the order of `vars::In::ALL` (cx, cy, spin, v, FN, T_bulk, aux1..aux4; the test
-//! `input_layout_of_version_2` pins it), settings (model, model_set, preset, config_file, columns,
-//! set parameters as (u32 registry index, f64),
-//! set effects as (u8 catalogue index, u8), nx, ny as u32 (0 = not set), i32 geometry,
-//! `N_GEO` = 5 × (u8 present, f64) in the order of `vars::Geo::ALL`), u8 + configuration (u8 model, u32 effect bits, u32 count + f64
-//! per parameter, u8 bound, u32 nx, u32 ny, u8 geometry kind + 3 × f64, preset name, u8 +
-//! (if formula or custom effects) the configuration as JSON and, per formula then custom
-//! effect, u32 count + f64 parameter values), u8 + u32 length +
-//! the bytes of `creep_core::Model::save_state` (the whole bristle grid and heat histories).
+//! Layout (version 3): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
+//! name as in modelDescription.xml, f64 value), settings (model, model_set, preset,
+//! config_file, columns, set parameters as (u32 registry index, f64), set effects as (u8
+//! catalogue index, u8), nx, ny as u32 (0 = not set), i32 geometry, u32 count + per geometry
+//! parameter (name, u8 present, f64)), u8 + configuration (u8 model, u32 effect bits, u32
+//! count + f64 per parameter, u8 bound, u32 nx, u32 ny, u8 geometry kind + 3 × f64, preset
+//! name, u8 + (if formula or Rust effects) the configuration as JSON and, per formula then
+//! Rust effect, u32 count + f64 parameter values), u8 + u32 length + the bytes of
+//! `creep_core::Model::save_state` (the whole bristle grid and heat histories).
+//! Inputs and geometry values are stored by name, so that a build with another input reads
+//! the state (an input it lacks keeps its start value; a name the reading build does not know
+//! is refused). Version 2 (read, not written) stored the 10 inputs and 5 geometry values
+//! without names, in the fixed orders `V2_INPUTS`, `V2_GEO`.
 //! Strings are u32 length + UTF-8. Nothing follows the last field.
 
 use crate::instance::{validate_snapshot, Snapshot};
 use crate::settings::{extras_for, Settings};
+use crate::vars::{Geo, In, N_GEO, N_INPUTS};
 use creep_core::bytes::{Reader, Writer};
 use creep_core::effects::{self, Effect, EffectSet};
 use creep_core::params::{self, Params, P};
@@ -22,7 +26,14 @@ use creep_core::{AnyModifier, Bound, Config, Geometry, Grid, Model, ModelKind, M
 /// Magic bytes at the start of a serialized FMU state.
 pub const MAGIC: &[u8; 8] = b"ECFFMUST";
 /// Format version written by this build.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
+
+/// The inputs of format version 2, in its fixed order (version 3 stores each with its name).
+const V2_INPUTS: [&str; 10] = [
+    "cx", "cy", "spin", "v", "FN", "T_bulk", "aux1", "aux2", "aux3", "aux4",
+];
+/// The geometry parameters of format version 2, in its fixed order.
+const V2_GEO: [&str; 5] = ["a_ref", "b_ref", "FN_ref", "Rx", "Ry"];
 
 type W = Writer;
 type R<'a> = Reader<'a>;
@@ -187,7 +198,10 @@ pub fn serialize(s: &Snapshot) -> Vec<u8> {
     w.raw(MAGIC);
     w.u32(VERSION);
     w.f64(s.time);
-    for x in s.inputs {
+    // each input with its name: a build with more inputs reads this state
+    w.u32(N_INPUTS as u32);
+    for (i, x) in In::ALL.iter().zip(s.inputs) {
+        w.str(&i.name());
         w.f64(x);
     }
     let st = &s.settings;
@@ -209,9 +223,11 @@ pub fn serialize(s: &Snapshot) -> Vec<u8> {
     w.u32(st.nx.unwrap_or(0) as u32);
     w.u32(st.ny.unwrap_or(0) as u32);
     w.i32(st.geometry);
-    for g in st.geo {
-        w.u8(g.is_some() as u8);
-        w.f64(g.unwrap_or(0.0));
+    w.u32(N_GEO as u32);
+    for (g, x) in Geo::ALL.iter().zip(st.geo) {
+        w.str(g.name());
+        w.u8(x.is_some() as u8);
+        w.f64(x.unwrap_or(0.0));
     }
     match &s.cfg {
         Some(c) => {
@@ -237,15 +253,32 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
         return Err("not a serialized ecf_contact FMU state (bad magic)".into());
     }
     let v = r.u32()?;
-    if v != VERSION {
+    if v != 2 && v != VERSION {
         return Err(format!(
-            "serialized FMU state has format version {v}; this build reads version {VERSION}"
+            "serialized FMU state has format version {v}; this build reads versions 2 and {VERSION}"
         ));
     }
     let time = r.f64()?;
-    let mut inputs = [0.0; crate::vars::N_INPUTS];
-    for x in inputs.iter_mut() {
-        *x = r.f64()?;
+    // inputs by name (version 2: its fixed list); an input the state lacks keeps its start
+    let mut inputs = In::ALL.map(|i| i.start());
+    let n = if v == 2 {
+        V2_INPUTS.len()
+    } else {
+        r.u32()? as usize
+    };
+    for k in 0..n {
+        let name = match V2_INPUTS.get(k) {
+            Some(n) if v == 2 => n.to_string(),
+            _ => r.str()?,
+        };
+        let x = r.f64()?;
+        let i = In::ALL
+            .iter()
+            .position(|i| i.name() == name)
+            .ok_or_else(|| {
+                format!("the state has an input '{name}' that this build does not know")
+            })?;
+        inputs[i] = x;
     }
     let mut st = Settings {
         model: r.str()?,
@@ -272,10 +305,25 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     st.nx = (nx > 0).then_some(nx);
     st.ny = (ny > 0).then_some(ny);
     st.geometry = r.i32()?;
-    for g in st.geo.iter_mut() {
+    let n = if v == 2 {
+        V2_GEO.len()
+    } else {
+        r.u32()? as usize
+    };
+    for k in 0..n {
+        let name = match V2_GEO.get(k) {
+            Some(n) if v == 2 => n.to_string(),
+            _ => r.str()?,
+        };
         let present = r.bool()?;
         let x = r.f64()?;
-        *g = present.then_some(x);
+        let g = Geo::ALL
+            .iter()
+            .position(|g| g.name() == name)
+            .ok_or_else(|| {
+                format!("the state has a geometry parameter '{name}' that this build does not know")
+            })?;
+        st.geo[g] = present.then_some(x);
     }
     let cfg = if r.bool()? {
         Some(get_config(&mut r)?)
@@ -316,22 +364,61 @@ mod tests {
     use super::*;
     use crate::instance::{Instance, Status};
 
+    fn last_name() -> String {
+        In::ALL[N_INPUTS - 1].name()
+    }
+
     #[test]
-    fn input_layout_of_version_2() {
-        // the serialized state stores the inputs and geometry values in declaration order;
-        // a change of these lists changes the format and needs a new VERSION
-        let inputs: Vec<String> = crate::vars::In::ALL.iter().map(|i| i.name()).collect();
+    fn inputs_and_geometry_are_stored_by_name() {
+        // version 2's fixed lists name today's inputs and geometry parameters
+        for n in V2_INPUTS {
+            assert!(In::ALL.iter().any(|i| i.name() == n), "{n}");
+        }
+        for n in V2_GEO {
+            assert!(Geo::ALL.iter().any(|g| g.name() == n), "{n}");
+        }
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
         assert_eq!(
-            inputs,
-            ["cx", "cy", "spin", "v", "FN", "T_bulk", "aux1", "aux2", "aux3", "aux4"],
-            "input layout of state format version {VERSION}"
+            i.set_real(
+                crate::vars::table()
+                    .iter()
+                    .find(|v| v.name == last_name())
+                    .unwrap()
+                    .vr,
+                7.5,
+            ),
+            Status::Ok
         );
-        let geo: Vec<&str> = crate::vars::Geo::ALL.iter().map(|g| g.name()).collect();
-        assert_eq!(
-            geo,
-            ["a_ref", "b_ref", "FN_ref", "Rx", "Ry"],
-            "geometry layout of state format version {VERSION}"
-        );
+        let snap = i.get_state();
+        let mut bytes = serialize(&snap);
+        let back = deserialize(&bytes).expect("round trip");
+        assert_eq!(serialize(&back), bytes);
+        // a state of a build with one input less (here: without the last one) loads, that
+        // input at its start value; a name this build does not know is refused
+        let last = In::ALL[N_INPUTS - 1];
+        let tail = {
+            let mut w = W::new();
+            w.str(&last.name());
+            w.f64(snap.inputs[N_INPUTS - 1]);
+            w.into_inner()
+        };
+        let at = bytes
+            .windows(tail.len())
+            .position(|w| w == tail.as_slice())
+            .expect("the last input in the state");
+        let mut short = bytes[..at].to_vec();
+        short.extend_from_slice(&bytes[at + tail.len()..]);
+        // the count before the first input: 8 magic + 4 version + 8 time
+        short[20..24].copy_from_slice(&((N_INPUTS - 1) as u32).to_le_bytes());
+        let s = deserialize(&short).expect("a state without the last input loads");
+        assert_eq!(snap.inputs[N_INPUTS - 1], 7.5);
+        assert_eq!(s.inputs[N_INPUTS - 1], last.start());
+        let name_at = at + 4; // the name's bytes after its length
+        bytes[name_at] = b'#';
+        let e = deserialize(&bytes).unwrap_err();
+        assert!(e.contains("does not know"), "{e}");
     }
 
     #[test]

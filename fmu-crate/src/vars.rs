@@ -11,8 +11,9 @@
 //! * an output: one line in `outputs` (name, value reference, unit, the field of
 //!   `creep_core::Outputs`, description); get, XML and ModelStructure follow;
 //! * an input: one line in `inputs` (the field of `creep_core::Inputs`); get/set, validation,
-//!   the core inputs and the state layout follow. The serialized state then has one more
-//!   value: raise `state::VERSION` (the test `input_layout_of_version_2` says so);
+//!   the core inputs and the state layout follow (the serialized state names its inputs and
+//!   geometry values, so states of earlier builds still load: an input they lack keeps its
+//!   start value);
 //! * a material parameter or an effect: its entry in creep-core's registry, nothing here;
 //! * another parameter: a [`Var`] in [`table`] with a new [`Slot`], and what it does in
 //!   `settings.rs` (check, apply, get, and its use in `Settings::resolve`).
@@ -124,6 +125,15 @@ macro_rules! contact_variables {
                 match self {
                     $( In::$in => $in_name.to_string(), )*
                     In::Aux(k) => format!("aux{}", k + 1),
+                }
+            }
+
+            /// Start value (modelDescription.xml): the value of an input that a serialized
+            /// state of an earlier build does not hold.
+            pub fn start(self) -> f64 {
+                match self {
+                    $( In::$in => Inputs::default().$in_core, )*
+                    In::Aux(_) => 0.0,
                 }
             }
 
