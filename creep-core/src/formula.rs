@@ -68,8 +68,8 @@ enum Op {
     /// An operating-point variable (index into [`OPERATING`]).
     Operating(u8),
     /// A data column (index into [`FormulaEffect::columns`]).
-    Column(u16),
-    Param(u16),
+    Column(u32),
+    Param(u32),
     Neg,
     Add,
     Sub,
@@ -81,7 +81,8 @@ enum Op {
     Max,
 }
 
-/// Deepest evaluation stack a formula may need (checked when it is compiled).
+/// Evaluation stack on the machine stack; a formula that needs more (deeply nested, e.g. a
+/// long Horner polynomial) runs on a heap stack instead.
 const MAX_STACK: usize = 32;
 
 fn compile(n: &Node, out: &mut Vec<Op>) {
@@ -91,8 +92,8 @@ fn compile(n: &Node, out: &mut Vec<Op>) {
         Node::Var(i) if *i < LOCAL.len() + OPERATING.len() => {
             out.push(Op::Operating((*i - LOCAL.len()) as u8))
         }
-        Node::Var(i) => out.push(Op::Column((*i - LOCAL.len() - OPERATING.len()) as u16)),
-        Node::Param(i) => out.push(Op::Param(*i as u16)),
+        Node::Var(i) => out.push(Op::Column((*i - LOCAL.len() - OPERATING.len()) as u32)),
+        Node::Param(i) => out.push(Op::Param(*i as u32)),
         Node::Neg(a) => {
             compile(a, out);
             out.push(Op::Neg);
@@ -167,6 +168,8 @@ pub struct FormulaEffect {
     pub columns: Vec<String>,
     /// The expression compiled to postfix instructions (functions and variables resolved).
     ops: Vec<Op>,
+    /// The evaluation stack the instructions need.
+    depth: usize,
     /// True if the expression uses local bristle state.
     pub local: bool,
 }
@@ -337,10 +340,19 @@ fn uses_vars(n: &Node) -> bool {
     }
 }
 
-/// Runs compiled ops; `var(op)` gives the value of a variable instruction.
+/// Runs compiled ops that need a stack of `depth` values; `var(op)` gives the value of a
+/// variable instruction.
 #[inline]
-fn run(ops: &[Op], params: &[FormulaParam], var: impl Fn(Op) -> f64) -> f64 {
-    let mut st = [0.0f64; MAX_STACK];
+fn run(ops: &[Op], depth: usize, params: &[FormulaParam], var: impl Fn(Op) -> f64) -> f64 {
+    if depth <= MAX_STACK {
+        run_on(ops, params, var, &mut [0.0f64; MAX_STACK])
+    } else {
+        run_on(ops, params, var, &mut vec![0.0f64; depth])
+    }
+}
+
+#[inline]
+fn run_on(ops: &[Op], params: &[FormulaParam], var: impl Fn(Op) -> f64, st: &mut [f64]) -> f64 {
     let mut n = 0usize;
     for &op in ops {
         match op {
@@ -435,18 +447,10 @@ impl FormulaEffect {
         let (columns, local) = (p.columns, p.local);
         let mut ops = Vec::new();
         compile(&expr, &mut ops);
-        if stack_depth(&ops) > MAX_STACK {
-            return Err(CreepError::Config {
-                source_name: format!("formula_effects.{name}.factor"),
-                message: format!(
-                    "'{factor}' nests too deeply (it needs {} intermediate values, at most {MAX_STACK}); split it into two effects on the same target",
-                    stack_depth(&ops)
-                ),
-            });
-        }
+        let depth = stack_depth(&ops);
         // a factor that depends on no variable is known now: finite and >= 0
         if !uses_vars(&expr) {
-            let x = run(&ops, &params, |_| f64::NAN);
+            let x = run(&ops, depth, &params, |_| f64::NAN);
             if !(x.is_finite() && x >= 0.0) {
                 return Err(CreepError::OutOfRange {
                     field: format!("formula_effects.{name}.factor '{factor}'"),
@@ -462,6 +466,7 @@ impl FormulaEffect {
             params,
             columns,
             ops,
+            depth,
             local,
         })
     }
@@ -470,7 +475,7 @@ impl FormulaEffect {
     /// (a missing value reads as NaN).
     pub fn eval(&self, vars: &[f64]) -> f64 {
         let at = |i: usize| vars.get(i).copied().unwrap_or(f64::NAN);
-        run(&self.ops, &self.params, |op| match op {
+        run(&self.ops, self.depth, &self.params, |op| match op {
             Op::Local(i) => at(i as usize),
             Op::Operating(i) => at(LOCAL.len() + i as usize),
             Op::Column(i) => at(LOCAL.len() + OPERATING.len() + i as usize),
@@ -529,7 +534,7 @@ impl Modifier for FormulaEffect {
     }
     #[inline]
     fn factor(&self, local: &LocalState, op: &OperatingPoint, cols: &[f64]) -> f64 {
-        run(&self.ops, &self.params, |o| match o {
+        run(&self.ops, self.depth, &self.params, |o| match o {
             Op::Local(0) => local.p_gpa,
             Op::Local(1) => local.t_c,
             Op::Local(2) => local.u_mm,
@@ -642,12 +647,19 @@ mod tests {
     }
 
     #[test]
-    fn a_formula_too_deep_for_the_stack_is_refused() {
+    fn a_deeply_nested_formula_runs_on_a_heap_stack() {
+        // 40 pending additions (a Horner polynomial nests the same way): deeper than the
+        // machine-stack buffer
         let deep = format!("{}1{}", "(1+".repeat(40), ")".repeat(40));
-        let e = FormulaEffect::new("d", Target::Mu, &deep, vec![])
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("nests too deeply"), "{e}");
+        let f = FormulaEffect::new("d", Target::Mu, &deep, vec![]).unwrap();
+        assert!(f.depth > MAX_STACK);
+        assert_eq!(f.eval(&[]), 41.0);
+        let horner = format!("{}1{}", "1 + v_mps*(".repeat(20), ")".repeat(20));
+        let g = FormulaEffect::new("h", Target::Mu, &horner, vec![]).unwrap();
+        let mut vars = [0.0; 9];
+        vars[4] = 0.5;
+        let want = (0..=20).map(|k| 0.5f64.powi(k)).sum::<f64>();
+        assert!((g.eval(&vars) - want).abs() < 1e-12);
         let ok = format!("{}1{}", "(1+".repeat(20), ")".repeat(20));
         assert_eq!(
             FormulaEffect::new("d", Target::Mu, &ok, vec![])

@@ -8,9 +8,14 @@
 //! through [`Modifier::param`] and [`Modifier::set_param`]. Nothing else in the engine or the
 //! fit knows which kind a modifier is.
 //!
-//! The factors of all modifiers of one target multiply (in list order) the material function
-//! wherever the engine evaluates it: tau_c1, tau_c2, L_p, L_e (Eq. 4.3, 4.4, 4.21) or mu of the
-//! Coulomb bound.
+//! The factors of all modifiers of one target multiply the material function wherever the
+//! engine evaluates it: tau_c1, tau_c2, L_p, L_e (Eq. 4.3, 4.4, 4.21) or mu of the Coulomb
+//! bound; formula effects first, then Rust effects, each in list order.
+//!
+//! Users extend the law with a formula effect (configuration) or by implementing
+//! [`crate::custom::CustomEffect`] in their own crate, not this trait: `Modifier` is what the
+//! engine, the fit and the FMU state see of both. A third kind would implement it and add a
+//! variant to [`crate::config::AnyModifier`].
 
 use crate::error::{CreepError, Result};
 
@@ -75,7 +80,9 @@ pub struct LocalState {
 /// Operating point of the contact.
 #[derive(Clone, Copy, Debug)]
 pub struct OperatingPoint<'a> {
-    /// Vehicle speed, m/s.
+    /// Vehicle speed, m/s: the user's operating point, negative when rolling backwards (the
+    /// engine's mirrored frame is not shown to modifiers; c_x, c_y and spin likewise keep the
+    /// user's signs).
     pub v_mps: f64,
     /// Normal force, kN.
     pub fn_kn: f64,
@@ -110,7 +117,8 @@ pub struct ModifierParam {
     pub min: f64,
     /// Upper bound a fit keeps.
     pub max: f64,
-    /// The widest bounds a user may narrow to (`--bound` checks against them).
+    /// The bounds a user may narrow to (`--bound` checks against them): a Rust effect's
+    /// declared bounds; a formula's current ones (narrowing a formula parameter replaces them).
     pub limits: (f64, f64),
 }
 
@@ -136,7 +144,7 @@ pub trait Modifier {
     /// Narrows the bounds of parameter `k` (the caller checks them against its limits).
     fn set_bounds(&mut self, k: usize, lo: f64, hi: f64);
     /// The factor (finite and >= 0 where the modifier is sensible; the engine clamps
-    /// negative values to 0) at the bristle's `local` state and the operating point `op`;
+    /// negative values and NaN to 0) at the bristle's `local` state and the operating point `op`;
     /// `cols` holds the values of [`Modifier::columns`] in their order, resolved once per
     /// operating point.
     fn factor(&self, local: &LocalState, op: &OperatingPoint, cols: &[f64]) -> f64;

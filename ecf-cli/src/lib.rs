@@ -270,7 +270,7 @@ struct ModelArgs {
     /// Parameter override NAME=VALUE (repeatable; units as in the name, see `ecf info`)
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
-    /// Value of a data column used by formula effects, NAME=VALUE (repeatable)
+    /// Value of a data column read by formula or Rust effects, NAME=VALUE (repeatable)
     #[arg(long = "extra", value_name = "NAME=VALUE")]
     extra: Vec<String>,
 }

@@ -366,7 +366,7 @@ impl Contact {
             self.patch_fn = inputs.fn_n;
         }
         self.inputs = *inputs;
-        self.update_formula_vars()?;
+        self.update_modifiers()?;
         if self.r.temperature && inputs.v > V_STANDSTILL {
             let vw = inputs.v * (1.0 + inputs.cx).abs();
             if !thermal::peclet_ok(self.patch.a, inputs.v, vw, self.r.kappa_w, self.r.kappa_r) {

@@ -26,7 +26,10 @@ pub(super) struct Modifiers {
     /// Product of the factors of the modifiers that do not read the local state, per target
     /// (tau_c1, tau_c2, L_e, L_p, mu).
     fstatic: [f64; 5],
-    /// Indices of the modifiers that read the local state.
+    /// Indices of the modifiers in the order their factors multiply: formula effects, then
+    /// Rust effects, each in list order (the order of earlier builds, whatever the list's).
+    order: Vec<usize>,
+    /// Indices of the modifiers that read the local state, in that order.
     local: Vec<usize>,
 }
 
@@ -34,15 +37,23 @@ impl Modifiers {
     /// The collection of a configuration's modifiers, factors 1 until
     /// [`Modifiers::at`] is called.
     pub(super) fn new(list: &[AnyModifier]) -> Self {
+        let formula = |k: &usize| matches!(list[*k], AnyModifier::Formula(_));
+        let order: Vec<usize> = (0..list.len())
+            .filter(formula)
+            .chain((0..list.len()).filter(|k| !formula(k)))
+            .collect();
         Modifiers {
             list: list.to_vec(),
             extra: Vec::new(),
             cols: vec![Vec::new(); list.len()],
             op: [0.0; 5],
             fstatic: [1.0; 5],
-            local: (0..list.len())
+            local: order
+                .iter()
+                .copied()
                 .filter(|&k| list[k].uses_local_state())
                 .collect(),
+            order,
         }
     }
 
@@ -82,7 +93,8 @@ impl Modifiers {
             return Ok(());
         }
         self.op = op;
-        for (k, m) in self.list.iter().enumerate() {
+        for &k in &self.order {
+            let m = &self.list[k];
             let mut vals = Vec::new();
             for c in m.columns() {
                 let x = self
@@ -113,7 +125,8 @@ impl Modifiers {
         }
         let mut fstatic = [1.0; 5];
         let op = self.operating_point();
-        for (k, m) in self.list.iter().enumerate() {
+        for &k in &self.order {
+            let m = &self.list[k];
             if !m.uses_local_state() {
                 fstatic[m.target() as usize] *= m
                     .factor(&LocalState::default(), &op, &self.cols[k])
@@ -150,11 +163,11 @@ impl Contact {
     /// Sets the values of extra (data) columns that formula and Rust effects read.
     pub fn set_extra(&mut self, values: &[(String, f64)]) -> Result<()> {
         self.modifiers.set_extra(values);
-        self.update_formula_vars()
+        self.update_modifiers()
     }
 
     /// Moves the modifiers to the current inputs (the user's operating point).
-    pub(super) fn update_formula_vars(&mut self) -> Result<()> {
+    pub(super) fn update_modifiers(&mut self) -> Result<()> {
         if self.modifiers.is_empty() {
             return Ok(());
         }
@@ -165,7 +178,7 @@ impl Contact {
     /// Scales a material by the modifiers' factors (local ones evaluated at this bristle:
     /// pressure `p` Pa, temperature `t` degC, |u| = `u` m, rigid slip speed `slip` m/s).
     #[inline]
-    pub(super) fn apply_formulas(
+    pub(super) fn apply_modifiers(
         &self,
         mut m: Material,
         coulomb: bool,
@@ -214,6 +227,6 @@ impl Contact {
     #[inline]
     pub(super) fn material(&self, np: &NodeP, t: f64, u: f64, slip: f64) -> Material {
         let m = self.r.material_base(np, t);
-        self.apply_formulas(m, self.r.coulomb, np.p, t, u, slip)
+        self.apply_modifiers(m, self.r.coulomb, np.p, t, u, slip)
     }
 }

@@ -9,6 +9,7 @@ mod fastsim_limit;
 mod grid_convergence;
 mod heat;
 mod kalker_linear_theory;
+mod modifiers;
 mod periodic_creepage;
 mod published_references;
 mod reversed_rolling;
