@@ -325,6 +325,16 @@ pub enum AnyModifier {
 }
 
 impl AnyModifier {
+    /// Indices of `list` in the order the factors multiply and the FMU state stores their
+    /// parameters: formula effects, then Rust effects, each in list order.
+    pub fn kind_order(list: &[AnyModifier]) -> Vec<usize> {
+        let formula = |k: &usize| matches!(list[*k], AnyModifier::Formula(_));
+        (0..list.len())
+            .filter(formula)
+            .chain((0..list.len()).filter(|k| !formula(k)))
+            .collect()
+    }
+
     fn inner(&self) -> &dyn Modifier {
         match self {
             AnyModifier::Formula(f) => f,

@@ -89,21 +89,16 @@ fn put_config(w: &mut W, c: &Config) {
     if has_mod {
         w.str(&c.to_json().to_string());
         // formula effects first, then Rust effects (the order of the JSON above)
-        for m in modifiers_by_kind(&c.modifiers).map(|k| &c.modifiers[k]) {
+        for m in AnyModifier::kind_order(&c.modifiers)
+            .into_iter()
+            .map(|k| &c.modifiers[k])
+        {
             w.u32(m.n_params() as u32);
             for k in 0..m.n_params() {
                 w.f64(m.param(k).value);
             }
         }
     }
-}
-
-/// The modifiers in the state's order: formula effects, then Rust effects, each in list order.
-fn modifiers_by_kind(list: &[AnyModifier]) -> impl Iterator<Item = usize> + '_ {
-    let formula = |m: &AnyModifier| matches!(m, AnyModifier::Formula(_));
-    (0..list.len())
-        .filter(move |&k| formula(&list[k]))
-        .chain((0..list.len()).filter(move |&k| !formula(&list[k])))
 }
 
 fn get_config(r: &mut R) -> Result<Config, String> {
@@ -160,8 +155,7 @@ fn get_config(r: &mut R) -> Result<Config, String> {
         let json = r.str()?;
         let full = Config::from_json_str(&json, "FMU state").map_err(|e| e.to_string())?;
         modifiers = full.modifiers;
-        let order: Vec<usize> = modifiers_by_kind(&modifiers).collect();
-        for k in order {
+        for k in AnyModifier::kind_order(&modifiers) {
             let m = &mut modifiers[k];
             let n = r.u32()? as usize;
             if n != m.n_params() {
@@ -246,6 +240,36 @@ pub fn serialize(s: &Snapshot) -> Vec<u8> {
     w.into_inner()
 }
 
+/// Reads a list of named values: version 3 a u32 count and per entry its name and value,
+/// version 2 the values alone in the fixed order `v2`. `value(r, i)` reads the value of the
+/// entry whose name is `names[i]`; a name this build does not know (`what`: "an input") is
+/// refused.
+fn read_named(
+    r: &mut R,
+    version: u32,
+    v2: &[&str],
+    names: &[String],
+    what: &str,
+    mut value: impl FnMut(&mut R, usize) -> Result<(), String>,
+) -> Result<(), String> {
+    let n = if version == 2 {
+        v2.len()
+    } else {
+        r.u32()? as usize
+    };
+    for k in 0..n {
+        let name = match v2.get(k) {
+            Some(n) if version == 2 => n.to_string(),
+            _ => r.str()?,
+        };
+        let i = names.iter().position(|n| *n == name).ok_or_else(|| {
+            format!("the state has {what} '{name}' that this build does not know")
+        })?;
+        value(r, i)?;
+    }
+    Ok(())
+}
+
 /// Reads a snapshot written by [`serialize`]; checks everything, including the core state.
 pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     let mut r = R::new(data);
@@ -261,25 +285,11 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     let time = r.f64()?;
     // inputs by name (version 2: its fixed list); an input the state lacks keeps its start
     let mut inputs = In::ALL.map(|i| i.start());
-    let n = if v == 2 {
-        V2_INPUTS.len()
-    } else {
-        r.u32()? as usize
-    };
-    for k in 0..n {
-        let name = match V2_INPUTS.get(k) {
-            Some(n) if v == 2 => n.to_string(),
-            _ => r.str()?,
-        };
-        let x = r.f64()?;
-        let i = In::ALL
-            .iter()
-            .position(|i| i.name() == name)
-            .ok_or_else(|| {
-                format!("the state has an input '{name}' that this build does not know")
-            })?;
-        inputs[i] = x;
-    }
+    let names: Vec<String> = In::ALL.iter().map(|i| i.name()).collect();
+    read_named(&mut r, v, &V2_INPUTS, &names, "an input", |r, i| {
+        inputs[i] = r.f64()?;
+        Ok(())
+    })?;
     let mut st = Settings {
         model: r.str()?,
         model_set: r.bool()?,
@@ -305,26 +315,20 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     st.nx = (nx > 0).then_some(nx);
     st.ny = (ny > 0).then_some(ny);
     st.geometry = r.i32()?;
-    let n = if v == 2 {
-        V2_GEO.len()
-    } else {
-        r.u32()? as usize
-    };
-    for k in 0..n {
-        let name = match V2_GEO.get(k) {
-            Some(n) if v == 2 => n.to_string(),
-            _ => r.str()?,
-        };
-        let present = r.bool()?;
-        let x = r.f64()?;
-        let g = Geo::ALL
-            .iter()
-            .position(|g| g.name() == name)
-            .ok_or_else(|| {
-                format!("the state has a geometry parameter '{name}' that this build does not know")
-            })?;
-        st.geo[g] = present.then_some(x);
-    }
+    let names: Vec<String> = Geo::ALL.iter().map(|g| g.name().to_string()).collect();
+    read_named(
+        &mut r,
+        v,
+        &V2_GEO,
+        &names,
+        "a geometry parameter",
+        |r, g| {
+            let present = r.bool()?;
+            let x = r.f64()?;
+            st.geo[g] = present.then_some(x);
+            Ok(())
+        },
+    )?;
     let cfg = if r.bool()? {
         Some(get_config(&mut r)?)
     } else {

@@ -37,11 +37,7 @@ impl Modifiers {
     /// The collection of a configuration's modifiers, factors 1 until
     /// [`Modifiers::at`] is called.
     pub(super) fn new(list: &[AnyModifier]) -> Self {
-        let formula = |k: &usize| matches!(list[*k], AnyModifier::Formula(_));
-        let order: Vec<usize> = (0..list.len())
-            .filter(formula)
-            .chain((0..list.len()).filter(|k| !formula(k)))
-            .collect();
+        let order = AnyModifier::kind_order(list);
         Modifiers {
             list: list.to_vec(),
             extra: Vec::new(),
