@@ -1,4 +1,4 @@
-//! A fixed small workload for instruction counting (valgrind --tool=callgrind): steady dry and FASTSIM at four creepages, then 20 transient dry steps of 0.1 ms at 20 m/s, on 80x21.
+//! A fixed small workload for instruction counting (valgrind --tool=callgrind): steady dry and FASTSIM at four creepages, then 20 transient dry steps of 0.1 ms at 20 m/s (cells march; `continuous`: the continuous scheme), on 80x21.
 use creep_core::{Config, Grid, Inputs, Model};
 fn main() {
     let what = std::env::args().nth(1).unwrap_or_else(|| "all".into());
@@ -25,8 +25,11 @@ fn main() {
                 .f;
         }
     }
-    if what == "all" || what == "transient" {
+    if what == "all" || what == "transient" || what == "continuous" {
         let mut m = mk("dry");
+        if what == "continuous" {
+            m.set_scheme(creep_core::engine::Scheme::Continuous);
+        }
         let i = Inputs {
             cx: 0.15,
             v: 20.0,

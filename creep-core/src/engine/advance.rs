@@ -25,6 +25,25 @@ pub(super) struct Kin {
     /// alpha_c 2 sqrt(h): the flash temperature per heat density of the sub-step's own
     /// interval (Eq. 4.35's first term), 0 without heat flow.
     pub(super) self_c: f64,
+    /// Weight of the sub-step's start stress in its dissipation (Eq. 4.29): 0 for moves of
+    /// at most one cell (the march and the cell schemes: the stress at the end); for a
+    /// continuous sub-step of n > 1 cells (1 - 1/n)/2, so that it dissipates what n one-cell
+    /// moves would (to second order), see [`Contact::advance_continuous`].
+    pub(super) w_old: f64,
+}
+
+/// The stress that multiplies a move's plastic slip in its dissipation (Eq. 4.29):
+/// `new - w (new - old)`; exactly `new` for w = 0 (moves of at most one cell).
+#[inline]
+pub(super) fn weighted_stress(new: [f64; 2], old: [f64; 2], w: f64) -> [f64; 2] {
+    if w == 0.0 {
+        new
+    } else {
+        [
+            new[0] - w * (new[0] - old[0]),
+            new[1] - w * (new[1] - old[1]),
+        ]
+    }
 }
 
 impl Contact {
@@ -62,12 +81,13 @@ impl Contact {
             alpha_c,
             t_bulk: i.t_bulk,
             self_c: if heat { alpha_c * 2.0 * h.sqrt() } else { 0.0 },
+            w_old: 0.0,
         }
     }
 
     /// Advances one bristle by one sub-step; returns its heat density q (W/m^2, both bodies).
     #[inline]
-    pub(super) fn update_bristle(
+    pub(super) fn update_bristle<const W: bool>(
         &self,
         k: &Kin,
         np: &NodeP,
@@ -89,7 +109,7 @@ impl Contact {
         };
         // a layer that only softens as it heats: the scalar solve (module `softening`)
         if self.softening_fast && k.heat {
-            if let Some(q) = self.update_softening(k, np, [x, y], du, t_hist, s, acc, fac) {
+            if let Some(q) = self.update_softening::<W>(k, np, [x, y], du, t_hist, s, acc, fac) {
                 return q;
             }
         }
@@ -167,7 +187,12 @@ impl Contact {
                 };
                 let dux = du[0] - lxe * (tr[0] - old.tau[0]);
                 let duy = du[1] - lye * (tr[1] - old.tau[1]);
-                (self.r.kq * (ns.tau[0] * dux + ns.tau[1] * duy) / k.h).max(0.0)
+                let tw = if W {
+                    weighted_stress(ns.tau, old.tau, k.w_old)
+                } else {
+                    ns.tau
+                };
+                (self.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0)
             } else {
                 0.0
             };
@@ -247,13 +272,13 @@ impl Contact {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
-                self.move_bristle_with(j, xi, &sp.nodes[slot + 1], &kin, &fac, s, ac);
+                self.move_bristle_with::<false>(j, xi, &sp.nodes[slot + 1], &kin, &fac, s, ac);
             }
         } else {
             for slot in skip..inside.min(end) {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
-                self.move_bristle(j, xi, &kin, &fac, &mut sp.st[id], &mut sp.acc[id]);
+                self.move_bristle::<false>(j, xi, &kin, &fac, &mut sp.st[id], &mut sp.acc[id]);
             }
         }
     }
@@ -285,7 +310,7 @@ impl Contact {
     /// closer to the trailing edge than half a cell: the last node stands for the last cell
     /// (docs/model.md); the spin lever arm is the path's midpoint.
     #[inline]
-    pub(super) fn move_bristle(
+    pub(super) fn move_bristle<const W: bool>(
         &self,
         j: usize,
         xi_end: f64,
@@ -300,14 +325,34 @@ impl Contact {
             xi_end.max(-self.ell[j] + 0.5 * dxi),
             self.eta[j],
         );
-        self.move_bristle_with(j, xi_end, &np, kin, fac, s, acc);
+        self.move_bristle_with::<W>(j, xi_end, &np, kin, fac, s, acc);
+    }
+
+    /// [`Self::move_bristle`] for a sub-step of the continuous scheme: with the start stress
+    /// weighted in the dissipation where the sub-step is longer than a cell
+    /// (`Kin::w_old` > 0; a separate instance, so that the other moves run without it).
+    #[inline]
+    fn move_continuous(
+        &self,
+        j: usize,
+        xi_end: f64,
+        kin: &Kin,
+        fac: &StepFactors,
+        s: &mut BristleState,
+        acc: &mut [f64; N_KERNEL],
+    ) {
+        if kin.w_old > 0.0 {
+            self.move_bristle::<true>(j, xi_end, kin, fac, s, acc);
+        } else {
+            self.move_bristle::<false>(j, xi_end, kin, fac, s, acc);
+        }
     }
 
     /// [`Self::move_bristle`] with the pressure parts `np` of the end node given (the march
     /// takes them from the per-load cache of the lattice nodes).
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    fn move_bristle_with(
+    fn move_bristle_with<const W: bool>(
         &self,
         j: usize,
         xi_end: f64,
@@ -325,16 +370,22 @@ impl Contact {
         };
         let x_mid = a * (xi_end + 0.5 * kin.dist / a);
         if self.r.temperature || self.has_modifiers() {
-            self.update_bristle(kin, np, [x_mid, y], s, acc, fac);
+            self.update_bristle::<W>(kin, np, [x_mid, y], s, acc, fac);
         } else {
-            self.update_bristle_cold(kin, np, [x_mid, y], s);
+            self.update_bristle_cold::<W>(kin, np, [x_mid, y], s);
         }
     }
 
     /// [`Self::update_bristle`] without temperature and modifiers (FASTSIM, isothermal ECF):
     /// the same operations without the temperature solve and the heat kernel.
     #[inline]
-    fn update_bristle_cold(&self, k: &Kin, np: &NodeP, [x, y]: [f64; 2], s: &mut BristleState) {
+    fn update_bristle_cold<const W: bool>(
+        &self,
+        k: &Kin,
+        np: &NodeP,
+        [x, y]: [f64; 2],
+        s: &mut BristleState,
+    ) {
         let d = k.dist;
         let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
         let m = self.r.material_base(np, k.t_bulk);
@@ -350,7 +401,12 @@ impl Contact {
         s.q = if k.heat {
             let dux = du[0] - lxe * (s.tau[0] - old[0]);
             let duy = du[1] - lye * (s.tau[1] - old[1]);
-            (self.r.kq * (s.tau[0] * dux + s.tau[1] * duy) / k.h).max(0.0)
+            let tw = if W {
+                weighted_stress(s.tau, old, k.w_old)
+            } else {
+                s.tau
+            };
+            (self.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0)
         } else {
             0.0
         };
@@ -407,7 +463,7 @@ impl Contact {
             // slot nx is past the trailing edge once the phase is > 0: not moved (as in the loop)
             if d_end > 0.0 && k < self.nx {
                 let (mut ps, mut pacc) = (s, acc);
-                self.move_bristle(
+                self.move_bristle::<false>(
                     j,
                     self.ell[j] - (k as f64 + phase_end) * dxi,
                     &kin_part,
@@ -426,7 +482,7 @@ impl Contact {
                 }
             }
             if k + 1 < count {
-                self.move_bristle_with(
+                self.move_bristle_with::<false>(
                     j,
                     self.ell[j] - (k as f64 + 1.0) * dxi,
                     &nodes[k + 1],
@@ -546,7 +602,9 @@ impl Contact {
 
     /// [`super::Scheme::Continuous`]: advances the strip by `dt` (0 < v dt < 2a). The bristles
     /// that stay in the contact move by v dt in `n_sub` equal sub-steps of at most
-    /// [`super::MAX_SUBSTEP_CELLS`] cells (material at each sub-step's end, Eq. 4.5); those
+    /// [`super::MAX_SUBSTEP_CELLS`] cells (material at each sub-step's end, Eq. 4.5), cut
+    /// into pieces of at most a cell near the trailing edge and at the end of the step
+    /// (see the comments below); those
     /// that enter during the step are marched cell by cell from the leading edge (their
     /// whole history is this step's constant inputs, as in the steady march); those that
     /// leave are not moved. The number of entries is computed in closed form, so the work
@@ -561,10 +619,37 @@ impl Contact {
         let d_max = super::MAX_SUBSTEP_CELLS * 2.0 * a / nx as f64;
         let n_sub_eff = ((dist / d_max) * (1.0 - 1e-12)).ceil().max(1.0);
         let (h, d) = (dt / n_sub_eff, dist / n_sub_eff);
-        let kin = self.kin(h, d);
-        let fac = self.factors(sp.fac, h, kin.heat);
         let dx = 2.0 * self.ell[j] * a / nx as f64;
         let dxi = 2.0 * self.ell[j] / nx as f64;
+        // a sub-step of n > 1 cells of this strip weighs its start stress by (1 - 1/n)/2 in
+        // its dissipation: n one-cell moves at the end stress each sum to this, to second
+        // order (the march's cells are what the other schemes and the steady state use)
+        let kin_for = |hh: f64, dd: f64| {
+            let mut k = self.kin(hh, dd);
+            if dd > dx {
+                k.w_old = 0.5 * (1.0 - dx / dd);
+            }
+            k
+        };
+        let kin = kin_for(h, d);
+        let fac = self.factors(sp.fac, h, kin.heat);
+        // A sub-step longer than a cell is cut into m pieces of at most one cell where it
+        // ends within EDGE_CELLS cells of the trailing edge (the pressure falls to 0 there and
+        // the bristles heat fastest), and the last sub-step of the step ends with one such
+        // piece, so that the stresses and heat densities the step reports are those of a
+        // move of at most one cell, as in the other schemes.
+        let m = ((d / dx) * (1.0 - 1e-12)).ceil().max(1.0);
+        let pieces = (m > 1.0).then(|| {
+            let (hf, df) = (h / m, d / m);
+            let fine = kin_for(hf, df);
+            let fine_fac = self.factors(sp.fac, hf, fine.heat);
+            let (hr, dr) = (h - hf, d - df);
+            let rest = kin_for(hr, dr);
+            let rest_fac = self.factors(sp.fac, hr, rest.heat);
+            (fine, fine_fac, rest, rest_fac)
+        });
+        let edge = -self.ell[j] + super::EDGE_CELLS * dxi;
+        let n_sub = n_sub_eff as usize;
         let ph0 = *sp.phase;
         let cells = ph0 + dist / dx;
         let wraps_f = (cells + 1e-9).floor();
@@ -589,9 +674,27 @@ impl Contact {
                 let xi0 = self.ell[j] - (slot as f64 + ph0) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
-                for i in 1..=n_sub_eff as usize {
+                for i in 1..=n_sub {
                     let xi_end = xi0 - i as f64 * d / a;
-                    self.move_bristle(j, xi_end, &kin, &fac, s, ac);
+                    let xi_start = xi0 - (i - 1) as f64 * d / a;
+                    match &pieces {
+                        Some((fine, fine_fac, _, _)) if xi_end < edge => {
+                            for p in 1..=m as usize {
+                                let xe = if p == m as usize {
+                                    xi_end
+                                } else {
+                                    xi_start - p as f64 * fine.dist / a
+                                };
+                                self.move_bristle::<false>(j, xe, fine, fine_fac, s, ac);
+                            }
+                        }
+                        Some((fine, fine_fac, rest, rest_fac)) if i == n_sub => {
+                            let xe = xi_start - rest.dist / a;
+                            self.move_continuous(j, xe, rest, rest_fac, s, ac);
+                            self.move_bristle::<false>(j, xi_end, fine, fine_fac, s, ac);
+                        }
+                        _ => self.move_continuous(j, xi_end, &kin, &fac, s, ac),
+                    }
                 }
             }
         }

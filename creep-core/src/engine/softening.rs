@@ -28,7 +28,7 @@ impl Contact {
     /// [`Contact::update_bristle`].
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn update_softening(
+    pub(super) fn update_softening<const W: bool>(
         &self,
         k: &Kin,
         np: &NodeP,
@@ -62,7 +62,9 @@ impl Contact {
             d * (k.cy / lye + k.cs * x / lse),
         ];
         let path = mv.softening_path(&old, dtau, &m_h)?;
-        let (mut ns, q) = self.solve_on_path(
+        // a weighted start stress (long continuous sub-steps) in its own instance, so that
+        // the common moves run the unweighted code
+        let (mut ns, q) = self.solve_on_path::<W>(
             k,
             np,
             &m_h,
@@ -102,7 +104,7 @@ impl Contact {
     /// search fails, if an elastic bristle would yield at the root, or if the residual at the
     /// root is not within the tolerance: the caller then runs the general solve.
     #[allow(clippy::too_many_arguments)]
-    fn solve_on_path(
+    fn solve_on_path<const WEIGHTED: bool>(
         &self,
         k: &Kin,
         np: &NodeP,
@@ -118,12 +120,19 @@ impl Contact {
     ) -> Option<(BristleState, f64)> {
         let kq_h = self.r.kq / k.h;
         let du = mv.du();
-        // q of Eq. 4.29 as in the law's evaluation: tau . (du - L (tau_r - tau_old)) kq / h,
-        // tau_r the release stress
+        let w = if WEIGHTED { k.w_old } else { 0.0 };
+        // q of Eq. 4.29 as in the law's evaluation: tau_w . (du - L (tau_r - tau_old)) kq / h,
+        // tau_r the release stress, tau_w = tau - w (tau - tau_old) (w = 0 but for long
+        // continuous sub-steps)
         let heat = |tau: [f64; 2], tau_r: [f64; 2]| {
             let dux = du[0] - l[0] * (tau_r[0] - old.tau[0]);
             let duy = du[1] - l[1] * (tau_r[1] - old.tau[1]);
-            (kq_h * (tau[0] * dux + tau[1] * duy)).max(0.0)
+            let tw = if WEIGHTED {
+                super::advance::weighted_stress(tau, old.tau, w)
+            } else {
+                tau
+            };
+            (kq_h * (tw[0] * dux + tw[1] * duy)).max(0.0)
         };
         let (tau, regime, q, t) = match path {
             SofteningPath::Elastic => {
@@ -180,18 +189,30 @@ impl Contact {
                         -c2 * m_h.tc2 * (1.0 - e_h) - (m_h.tc2 - t0) * de,
                     )
                 };
-                // along dir: q = a t - b t^2 with tau_r = t_h + theta (t - t_h)
+                // along dir: q = a t - b t^2 + c with tau_r = t_h + theta (t - t_h) (c = 0
+                // unless the start stress is weighted, w > 0: then tau_w = (1 - w) t dir +
+                // w tau_old scales the first two terms by 1 - w and adds w tau_old . slip)
                 let bb = kq_h * (l[0] * dir[0] * dir[0] + l[1] * dir[1] * dir[1]);
                 let a = kq_h
                     * (dir[0] * (du[0] + l[0] * old.tau[0]) + dir[1] * (du[1] + l[1] * old.tau[1]))
                     - bb * t_h * (1.0 - theta);
                 let b = bb * theta;
+                let (a, b, c) = if !WEIGHTED {
+                    (a, b, 0.0)
+                } else {
+                    let o = old.tau;
+                    let dd = kq_h * (l[0] * o[0] * dir[0] + l[1] * o[1] * dir[1]);
+                    let c0 = kq_h * (o[0] * (du[0] + l[0] * o[0]) + o[1] * (du[1] + l[1] * o[1]))
+                        - dd * t_h * (1.0 - theta);
+                    ((1.0 - w) * a - w * dd * theta, (1.0 - w) * b, w * c0)
+                };
                 // the last temperature evaluated and the law there: (T, t, dt/dT, sliding, tau_c2)
                 let last = std::cell::Cell::new((t_hist, t_h, dt_h, t0 >= m_h.tc2, m_h.tc2));
                 let q_of = |t_k: f64| {
                     let (t, dt, sl, tc2) = stress(t_k - t_hist);
                     last.set((t_k, t, dt, sl, tc2));
                     let q = a * t - b * t * t;
+                    let q = if WEIGHTED { q + c } else { q };
                     if q <= 0.0 {
                         (0.0, 0.0)
                     } else {
@@ -199,6 +220,7 @@ impl Contact {
                     }
                 };
                 let q_h = a * t_h - b * t_h * t_h;
+                let q_h = if WEIGHTED { q_h + c } else { q_h };
                 let (q_h, dq_h) = if q_h <= 0.0 {
                     (0.0, 0.0)
                 } else {
@@ -212,8 +234,13 @@ impl Contact {
                     let q_max = if dq_h <= 0.0 || b <= 0.0 {
                         q_h
                     } else {
-                        // the vertex of a t - b t^2 bounds q where it rises
-                        a * a / (4.0 * b)
+                        // the vertex of a t - b t^2 + c bounds q where it rises
+                        let v = a * a / (4.0 * b);
+                        if WEIGHTED {
+                            v + c
+                        } else {
+                            v
+                        }
                     };
                     let (root, _) = thermal::solve_monotone(
                         t_hist,

@@ -68,13 +68,26 @@ fn scalar_solve_agrees_with_the_general_solve_in_steady_state() {
 }
 
 /// Transient steps of several lengths with varying creepage, speed and load: the two
-/// solves stay together (their differences do not grow over 40 steps).
+/// solves stay together (their differences do not grow over 40 steps), in both schemes
+/// (the continuous one weighs the start stress in the dissipation of its long sub-steps).
 #[test]
 fn scalar_solve_agrees_with_the_general_solve_in_transient_steps() {
-    for name in ["table4.1", "dry"] {
+    use creep_core::engine::Scheme;
+    // the continuous scheme's long sub-steps carry more self-heating per solve, and the
+    // solves' differences grow over the steps to about 1.5e-3 (the build before its
+    // weighted dissipation and one-cell last piece: 3e-3 in T_max)
+    let tol_c = 2e-3;
+    for (name, scheme, tol) in [
+        ("table4.1", Scheme::CellsMarch, 2e-4),
+        ("dry", Scheme::CellsMarch, 2e-4),
+        ("table4.1", Scheme::Continuous, tol_c),
+        ("dry", Scheme::Continuous, tol_c),
+    ] {
         let cfg = with_grid(preset(name), 30, 9);
         let mut fast = Contact::new(&cfg).unwrap();
         let mut general = Contact::new(&cfg).unwrap();
+        fast.set_scheme(scheme);
+        general.set_scheme(scheme);
         general.set_softening_solve(false);
         let i0 = Inputs {
             cx: 0.01,
@@ -97,7 +110,7 @@ fn scalar_solve_agrees_with_the_general_solve_in_transient_steps() {
                 };
                 let a = fast.step(dt, &i).unwrap();
                 let b = general.step(dt, &i).unwrap();
-                agree(&format!("{name} step {k} dt {dt}"), &a, &b, 2e-4);
+                agree(&format!("{name} {scheme:?} step {k} dt {dt}"), &a, &b, tol);
             }
         }
     }
