@@ -41,8 +41,8 @@ fn step_0p1_to_1_percent_settles_after_2a_over_v() {
 fn steady_state_is_the_limit_of_the_transient_model() {
     // constant inputs, arbitrary (non-aligned) time steps, temperature on: after 3 a/v the
     // transient grid equals the steady march. The reference scheme (one sub-step per cell, as
-    // the march) must agree within 0.5 %; the default continuous scheme (sub-steps of up to
-    // 4 cells, not aligned with the march's) within the preset's grid-convergence error of
+    // the march) must agree within 0.5 %; the continuous scheme (sub-steps of up to
+    // 8 cells, not aligned with the march's) within the preset's grid-convergence error of
     // docs/model.md section 9 (80x21 vs 320x84: table4.1 0.75 %, fastsim 0.18 %, wet 3.2 %:
     // wet's tau_c1 halves every 1.3 K, so its discretisation error is the largest).
     use creep_core::engine::Scheme;
