@@ -55,10 +55,10 @@ pub enum Scheme {
     /// ending each step with a one-cell piece; a sub-step of n > 1 cells weighs its start
     /// stress by (1 - 1/n)/2 in its dissipation (Eq. 4.29), as n one-cell moves would.
     /// Bristles that enter during the step are marched cell by cell. On 80x21 its
-    /// dependence on the communication step (F_x 0.05 %, P_fric 0.4 %, T_max 0.3 % after a
-    /// creepage step, 1 x 1 ms vs 10 x 0.1 ms) is within the grid's own error; forces under
-    /// inputs that jump every step follow [`Scheme::CellsMarch`] within 1.5 %
-    /// (docs/model.md section 3).
+    /// dependence on the communication step after a creepage step at 20 m/s (1 x 1 ms vs
+    /// 10 x 0.1 ms) is 0.05-0.4 % for table4.1 (within the grid's own error) and 0.9-1.5 %
+    /// for dry; forces under inputs that jump every step follow [`Scheme::CellsMarch`]
+    /// within 1.5 % (docs/model.md section 3).
     Continuous,
     /// Reference: one sub-step per cell crossing for every bristle, no march (slowest).
     Cells,
