@@ -7,7 +7,7 @@ use crate::material::NodeP;
 use crate::thermal::{self, StepFactors, N_KERNEL};
 
 /// Entries of the kernel-factor cache (distinct sub-step lengths kept).
-const FAC_CACHE: usize = 4;
+const FAC_CACHE: usize = 8;
 
 /// Per-sub-step kinematic context of one strip.
 pub(super) struct Kin {
