@@ -450,3 +450,50 @@ fn step_field_at_ms_starts_at_the_steady_field_and_ends_at_the_new_one() {
     assert_ne!(code, 0);
     assert!(err.contains("--field-at-ms") && err.contains("-2"), "{err}");
 }
+
+#[test]
+fn step_and_sine_take_the_scheme() {
+    // --scheme cells is the default; continuous gives other numbers within about 1 %; a bad
+    // value names the flag and the accepted values
+    let run = |cmd: &str, scheme: Option<&str>| {
+        let mut args = vec![cmd, "--preset", "dry", "--grid", "40x11", "--v-mps", "20"];
+        if cmd == "step" {
+            args.extend(["--cx-from", "0.002", "--cx-to", "0.05"]);
+            args.extend(["--duration-ms", "1", "--dt-ms", "0.1"]);
+        } else {
+            args.extend(["--cm", "0.02", "--ca", "0.01", "--freq-hz", "50"]);
+            args.extend(["--cycles", "1", "--steps-per-cycle", "200"]);
+        }
+        if let Some(s) = scheme {
+            args.extend(["--scheme", s]);
+        }
+        let (code, out, err) = ecf(&args);
+        assert_eq!(code, 0, "{err}");
+        let last = out.lines().last().unwrap().to_string();
+        last.split(',').nth(2).unwrap().parse::<f64>().unwrap()
+    };
+    for cmd in ["step", "sine"] {
+        let default = run(cmd, None);
+        assert_eq!(default, run(cmd, Some("cells")), "{cmd}");
+        let cont = run(cmd, Some("continuous"));
+        assert!(cont != default, "{cmd}: the scheme must change the numbers");
+        assert!(
+            (cont - default).abs() < 0.02 * default,
+            "{cmd}: {cont} vs {default}"
+        );
+    }
+    let (code, _, err) = ecf(&[
+        "step",
+        "--cx-from",
+        "0",
+        "--cx-to",
+        "0.1",
+        "--scheme",
+        "fast",
+    ]);
+    assert_ne!(code, 0);
+    assert!(
+        err.contains("--scheme") && err.contains("continuous"),
+        "{err}"
+    );
+}
