@@ -32,18 +32,15 @@ pub(super) struct Kin {
     pub(super) w_old: f64,
 }
 
-/// The stress that multiplies a move's plastic slip in its dissipation (Eq. 4.29):
-/// `new - w (new - old)`; exactly `new` for w = 0 (moves of at most one cell).
+/// The stress that multiplies a long continuous sub-step's plastic slip in its
+/// dissipation (Eq. 4.29): `new - w (new - old)`, w = [`Kin::w_old`] > 0. (Moves of at most
+/// one cell take `new` itself: they run the instance without the weight.)
 #[inline]
 pub(super) fn weighted_stress(new: [f64; 2], old: [f64; 2], w: f64) -> [f64; 2] {
-    if w == 0.0 {
-        new
-    } else {
-        [
-            new[0] - w * (new[0] - old[0]),
-            new[1] - w * (new[1] - old[1]),
-        ]
-    }
+    [
+        new[0] - w * (new[0] - old[0]),
+        new[1] - w * (new[1] - old[1]),
+    ]
 }
 
 impl Contact {
@@ -617,7 +614,10 @@ impl Contact {
         let j = sp.j;
         let dist = v * dt;
         let d_max = super::MAX_SUBSTEP_CELLS * 2.0 * a / nx as f64;
-        let n_sub_eff = ((dist / d_max) * (1.0 - 1e-12)).ceil().max(1.0);
+        // equal parts of `len`, each at most `max` (a part a rounding error longer is
+        // not split off)
+        let parts = |len: f64, max: f64| ((len / max) * (1.0 - 1e-12)).ceil().max(1.0);
+        let n_sub_eff = parts(dist, d_max);
         let (h, d) = (dt / n_sub_eff, dist / n_sub_eff);
         let dx = 2.0 * self.ell[j] * a / nx as f64;
         let dxi = 2.0 * self.ell[j] / nx as f64;
@@ -638,7 +638,7 @@ impl Contact {
         // the bristles heat fastest), and the last sub-step of the step ends with one such
         // piece, so that the stresses and heat densities the step reports are those of a
         // move of at most one cell, as in the other schemes.
-        let m = ((d / dx) * (1.0 - 1e-12)).ceil().max(1.0);
+        let m = parts(d, dx);
         let pieces = (m > 1.0).then(|| {
             let (hf, df) = (h / m, d / m);
             let fine = kin_for(hf, df);

@@ -120,7 +120,7 @@ impl Contact {
     ) -> Option<(BristleState, f64)> {
         let kq_h = self.r.kq / k.h;
         let du = mv.du();
-        let w = if WEIGHTED { k.w_old } else { 0.0 };
+        let w = k.w_old;
         // q of Eq. 4.29 as in the law's evaluation: tau_w . (du - L (tau_r - tau_old)) kq / h,
         // tau_r the release stress, tau_w = tau - w (tau - tau_old) (w = 0 but for long
         // continuous sub-steps)
