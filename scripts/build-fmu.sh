@@ -1,22 +1,33 @@
 #!/usr/bin/env bash
-# Builds the ecf_contact FMU in release mode for glibc >= 2.17 (cargo-zigbuild) and packs dist/ecf_contact.fmu; the last line of output is its path.
+# Builds the ecf_contact FMU for linux64, win64 and darwin64 and packs dist/ecf_contact.fmu; the last line of output is its path.
 #
-# Checks on the binary: no glibc symbol version newer than 2.17 (objdump -T), only
-# base-system libraries (ldd), and exactly the fmi2* functions exported (nm -D).
-# Needs: cargo, the Python venv of scripts/setup-venv.sh (ziglang, cargo-zigbuild, fmpy),
-# libclang (bindgen of fmi-sys), binutils. Set ECF_FMU_NATIVE=1 to link with the host's
-# toolchain instead of zig (no glibc-2.17 guarantee; for quick local iterations).
+# binaries/linux64/ecf_contact.so     x86_64 Linux, glibc >= 2.17 (cargo-zigbuild)
+# binaries/win64/ecf_contact.dll      x86_64 Windows (MinGW-w64), no MinGW runtime DLL needed
+# binaries/darwin64/ecf_contact.dylib macOS >= 11, universal (x86_64 + arm64, arm64 signed ad hoc)
+# `--linux-only` (or ECF_FMU_LINUX_ONLY=1) builds and packs linux64 alone, for a user in a hurry.
 #
-# Binaries for other platforms, built elsewhere (docs/fmu.md, "Windows and macOS"), are packed
-# beside linux64: `--binary win64=PATH/ecf_contact.dll`, `--binary darwin64=PATH/libecf_contact.dylib`
-# (repeatable; also ECF_FMU_EXTRA_BINARIES="win64=... darwin64=..."). Each is checked for the
-# platform's file format (PE / Mach-O) and stored as binaries/<platform>/ecf_contact.<ext>.
+# Windows and macOS are cross-built here with Debian's Rust (rustc-web), which builds their
+# standard library from source (-Zbuild-std, once per target: target/cross/) because rustup's
+# targets cannot be downloaded; scripts/cross/ holds the two linker wrappers and says why.
+# Checks on each binary: exactly the 44 fmi2* functions exported (nm / objdump / llvm-nm);
+# linux64: no glibc symbol version newer than 2.17 and only base-system libraries (ldd);
+# win64: PE32+ x86-64, imports only Windows system DLLs; darwin64: both architectures, only
+# /usr/lib/libSystem linked, minimum macOS 11.0, install name @rpath/ecf_contact.dylib, the arm64
+# slice signed. Needs: cargo, the apt packages of scripts/setup.sh (installed here when missing),
+# the Python venv of scripts/setup-venv.sh (ziglang, cargo-zigbuild, fmpy). Set ECF_FMU_NATIVE=1
+# to link linux64 with the host's toolchain instead of zig (no glibc-2.17 guarantee).
+#
+# Binaries for further platforms, built elsewhere, are packed beside them: `--binary
+# win32=PATH/ecf_contact.dll` (repeatable; also ECF_FMU_EXTRA_BINARIES="win32=..."); a win64 or
+# darwin64 given so replaces the one built here. Each is checked for the platform's file format
+# (PE / Mach-O / ELF) and stored as binaries/<platform>/ecf_contact.<ext>.
 # ECF_FMU_OUT=PATH writes the FMU elsewhere than dist/ecf_contact.fmu.
 #
 # Your own Rust effects, without forking the project: `--effects PATH/TO/CRATE` links a crate
 # that registers effects with creep_core::register_effect! (example: examples/user-effect)
-# into the FMU and into an `ecf` binary. Both go to dist/with-<lib name>/ (ecf_contact.fmu,
-# ecf); the wrapper crates that link them are generated in target/with-effects/<lib name>/.
+# into the FMU (every platform above) and into an `ecf` binary. Both go to
+# dist/with-<lib name>/ (ecf_contact.fmu, ecf); the wrapper crates that link them are generated
+# in target/with-effects/<lib name>/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -27,6 +38,7 @@ OUT="${ECF_FMU_OUT:-$ROOT/dist/$ID.fmu}"
 
 EXTRA=()
 EFFECTS=""
+LINUX_ONLY=${ECF_FMU_LINUX_ONLY:-0}
 for b in ${ECF_FMU_EXTRA_BINARIES:-}; do EXTRA+=("$b"); done
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -36,7 +48,8 @@ while [ $# -gt 0 ]; do
     --effects) [ $# -ge 2 ] || { echo "build-fmu: --effects needs the path of a crate" >&2; exit 2; }
                EFFECTS="$2"; shift 2 ;;
     --effects=*) EFFECTS="${1#--effects=}"; shift ;;
-    *) echo "build-fmu: unknown argument '$1' (accepted: --binary PLATFORM=PATH, --effects PATH)" >&2; exit 2 ;;
+    --linux-only) LINUX_ONLY=1; shift ;;
+    *) echo "build-fmu: unknown argument '$1' (accepted: --linux-only, --binary PLATFORM=PATH, --effects PATH)" >&2; exit 2 ;;
   esac
 done
 # check every extra binary before building anything
@@ -143,6 +156,10 @@ RS
 fi
 
 bash scripts/setup-venv.sh >&2
+if [ "$LINUX_ONLY" != 1 ]; then
+  # the apt packages of the cross builds (scripts/setup.sh says what each is for)
+  bash scripts/apt-ensure.sh libclang-dev binutils rustc-web cargo-web rust-web-src gcc-mingw-w64-x86-64 lld-22 llvm-22
+fi
 export PATH="$ROOT/.venv/bin:$PATH"
 
 if [ "${ECF_FMU_NATIVE:-0}" = 1 ]; then
@@ -181,12 +198,92 @@ if [ -n "$extra" ] || [ "$nexp" != 44 ]; then
   exit 1
 fi
 
+# --- win64 and darwin64: cross builds with Debian's Rust and -Zbuild-std -----------------
+WIN_DLL=""
+MAC_DYLIB=""
+for b in ${EXTRA[@]+"${EXTRA[@]}"}; do
+  case "${b%%=*}" in win64|darwin64) echo "build-fmu: ${b%%=*} given by --binary replaces the one built here" >&2 ;; esac
+done
+if [ "$LINUX_ONLY" != 1 ]; then
+  XDIR="$ROOT/target/cross"
+  # bindgen (fmi-sys) runs the host's libclang for each target: its own resource headers
+  # (stddef.h, mm_malloc.h) and, for macOS, zig's libc headers of Darwin
+  LIBCLANG=$(ls /usr/lib/llvm-*/lib/libclang.so* 2>/dev/null | sort -V | tail -1)
+  CLANG_RES=$(ls -d "$(dirname "$LIBCLANG")"/clang/*/include 2>/dev/null | sort -V | tail -1)
+  [ -f "$CLANG_RES/stddef.h" ] || { echo "build-fmu: no resource headers of libclang ($LIBCLANG) found" >&2; exit 1; }
+  Z=$(python3 -c 'import os, ziglang; print(os.path.join(os.path.dirname(ziglang.__file__), "lib"))')
+  # zig's libSystem stub, with the arm64e.x1 architecture names LLVM's TAPI reader refuses
+  # renamed to arm64 (the stub lists arm64e only, which ld64.lld does not take for arm64)
+  mkdir -p "$XDIR/darwin-sdk"
+  sed 's/arm64e\.x1-/arm64-/g' "$Z/libc/darwin/libSystem.tbd" > "$XDIR/darwin-sdk/libSystem.tbd.new"
+  mv "$XDIR/darwin-sdk/libSystem.tbd.new" "$XDIR/darwin-sdk/libSystem.tbd"
+  cross() {  # cross TARGET: builds the FMU library for TARGET into $XDIR/TARGET/release
+    local t=$1 u
+    u=$(echo "${t//-/_}" | tr '[:lower:]' '[:upper:]')
+    local -a e=(PATH="$ROOT/.venv/bin:/usr/bin:$PATH" RUSTC=/usr/bin/rustc RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR="$XDIR")
+    local -a c=(--release ${MAN[@]+"${MAN[@]}"} "${PKG[@]}" --target "$t" -Zbuild-std=std,panic_unwind)
+    echo "build-fmu: $t (Debian's rustc $(/usr/bin/rustc --version | cut -d' ' -f2), standard library from source)" >&2
+    case "$t" in
+      *-windows-gnu)
+        env "${e[@]}" "CARGO_TARGET_${u}_LINKER=$ROOT/scripts/cross/link-mingw.sh" \
+          "BINDGEN_EXTRA_CLANG_ARGS_$t=-I$CLANG_RES" /usr/bin/cargo build "${c[@]}" >&2 ;;
+      *-apple-darwin)
+        env "${e[@]}" "CARGO_TARGET_${u}_LINKER=$ROOT/scripts/cross/link-darwin.sh" \
+          "CARGO_TARGET_${u}_RUSTFLAGS=-C linker-flavor=ld64.lld" ECF_DARWIN_SDK_LIB="$XDIR/darwin-sdk" \
+          MACOSX_DEPLOYMENT_TARGET=11.0 "BINDGEN_EXTRA_CLANG_ARGS_$t=-I$CLANG_RES -isystem $Z/libc/include/any-darwin-any" \
+          /usr/bin/cargo zigbuild "${c[@]}" >&2 ;;
+    esac
+  }
+  cross x86_64-pc-windows-gnu
+  WIN_DLL="$XDIR/x86_64-pc-windows-gnu/release/$LIBNAME.dll"
+  [ -f "$WIN_DLL" ] || { echo "build-fmu: $WIN_DLL not found" >&2; exit 1; }
+  fmt=$(x86_64-w64-mingw32-objdump -f "$WIN_DLL" | sed -n 's/.*file format //p')
+  [ "$fmt" = pei-x86-64 ] || { echo "build-fmu: $WIN_DLL is '$fmt', not PE32+ x86-64" >&2; exit 1; }
+  wexp=$(x86_64-w64-mingw32-objdump -p "$WIN_DLL" | sed -n '/\[Ordinal\/Name Pointer\] Table/,/^$/p' | awk '/^[[:space:]]*\[ *[0-9]+\]/ {print $NF}')
+  if [ "$(echo "$wexp" | grep -c '^fmi2')" != 44 ] || echo "$wexp" | grep -qv '^fmi2'; then
+    echo "build-fmu: $WIN_DLL exports (want exactly 44 fmi2*): $(echo $wexp)" >&2; exit 1
+  fi
+  wimp=$(x86_64-w64-mingw32-objdump -p "$WIN_DLL" | sed -n 's/^\s*DLL Name: //p' | sort -fu)
+  # Windows system DLLs only: no libgcc_s_seh, libwinpthread or libstdc++ beside the FMU
+  wbad=$(echo "$wimp" | grep -Eiv '^(kernel32|msvcrt|ntdll|userenv|ws2_32|bcryptprimitives|advapi32|api-ms-win-[a-z0-9-]+)\.dll$' || true)
+  [ -z "$wbad" ] || { echo "build-fmu: $WIN_DLL imports DLLs outside the Windows system: $wbad" >&2; exit 1; }
+  echo "build-fmu: win64: PE32+ x86-64, 44 fmi2* exports, imports $(echo $wimp)" >&2
+
+  cross x86_64-apple-darwin
+  cross aarch64-apple-darwin
+  MAC_DYLIB="$XDIR/darwin64/$LIBNAME.dylib"
+  mkdir -p "$XDIR/darwin64"
+  llvm-lipo-22 -create -output "$MAC_DYLIB" \
+    "$XDIR/x86_64-apple-darwin/release/lib$LIBNAME.dylib" "$XDIR/aarch64-apple-darwin/release/lib$LIBNAME.dylib"
+  archs=$(llvm-lipo-22 -archs "$MAC_DYLIB" | xargs)
+  [ "$archs" = "x86_64 arm64" ] || { echo "build-fmu: $MAC_DYLIB holds '$archs', want 'x86_64 arm64'" >&2; exit 1; }
+  for arch in x86_64 arm64; do
+    slice="$XDIR/darwin64/$arch.dylib"
+    llvm-lipo-22 -thin "$arch" -output "$slice" "$MAC_DYLIB"
+    mexp=$(llvm-nm-22 -gU --defined-only "$slice" | awk '{print $NF}')
+    if [ "$(echo "$mexp" | grep -c '^_fmi2')" != 44 ] || echo "$mexp" | grep -qv '^_fmi2'; then
+      echo "build-fmu: darwin64 $arch exports (want exactly 44 _fmi2*): $(echo $mexp | head -c 400)" >&2; exit 1
+    fi
+    load=$(llvm-otool-22 -L "$slice" | tail -n +2 | awk '{print $1}')
+    [ "$load" = "$(printf '@rpath/ecf_contact.dylib\n/usr/lib/libSystem.B.dylib')" ] || {
+      echo "build-fmu: darwin64 $arch: install name and libraries: $(echo $load) (want @rpath/ecf_contact.dylib /usr/lib/libSystem.B.dylib)" >&2; exit 1; }
+    minos=$(llvm-otool-22 -l "$slice" | awk '/LC_BUILD_VERSION/ {b = 1} b && $1 == "minos" {print $2; exit}')
+    [ "$minos" = 11.0 ] || { echo "build-fmu: darwin64 $arch: minimum macOS '$minos', want 11.0" >&2; exit 1; }
+    if [ "$arch" = arm64 ] && ! llvm-otool-22 -l "$slice" | grep -q LC_CODE_SIGNATURE; then
+      echo "build-fmu: darwin64 arm64 slice is not signed (Apple silicon refuses it)" >&2; exit 1
+    fi
+  done
+  echo "build-fmu: darwin64: universal ($archs), 44 _fmi2* exports each, only libSystem, macOS >= $minos, arm64 signed ad hoc" >&2
+fi
+
 # --- pack ----------------------------------------------------------------------------------
 STAGE="$ROOT/target/fmu-stage/$ID"
 rm -rf "$STAGE"
 mkdir -p "$STAGE/binaries/linux64" "$STAGE/resources/presets" "$STAGE/documentation" "$(dirname "$OUT")"
 cp modelDescription/modelDescription.xml "$STAGE/"
 cp "$SO" "$STAGE/binaries/linux64/$ID.so"
+if [ -n "$WIN_DLL" ]; then mkdir -p "$STAGE/binaries/win64"; cp "$WIN_DLL" "$STAGE/binaries/win64/$ID.dll"; fi
+if [ -n "$MAC_DYLIB" ]; then mkdir -p "$STAGE/binaries/darwin64"; cp "$MAC_DYLIB" "$STAGE/binaries/darwin64/$ID.dylib"; fi
 cp creep-core/presets/*.json "$STAGE/resources/presets/"
 cp fmu-crate/assets/model.png "$STAGE/model.png"
 for b in ${EXTRA[@]+"${EXTRA[@]}"}; do

@@ -1,20 +1,23 @@
 #!/usr/bin/env bash
-# Installs what the project needs on a fresh Debian machine: apt packages (libclang for the
-# bindgen of fmi-sys, binutils for the FMU binary checks), the Rust crates (cargo fetch) and
-# the Python venv from the pinned requirements.txt. Idempotent; apt runs only when something is missing.
+# Installs what the project needs on a fresh Debian machine: apt packages, the Rust crates
+# (cargo fetch) and the Python venv from the pinned requirements.txt. Idempotent; apt runs only
+# when something is missing. `--tests` adds what only the tests need (Wine, to run the Windows
+# FMU binary).
+#
+# apt packages and why:
+#   libclang-dev, binutils        bindgen of fmi-sys; objdump/nm checks of the linux64 binary
+#   rustc-web cargo-web           Debian's Rust with the source of its standard library
+#   rust-web-src                  (-Zbuild-std): the Windows and macOS standard libraries are
+#                                 built from it, as rustup's cannot be downloaded here
+#   gcc-mingw-w64-x86-64          MinGW-w64: linker and C compiler of the win64 binary
+#   lld-22, llvm-22               ld64.lld (links the darwin64 binary with its export list),
+#                                 llvm-lipo/-nm/-otool (universal binary and its checks)
+#   wine64 (--tests)              runs the win64 binary under test
 set -euo pipefail
 cd "$(dirname "$0")/.."
-APT_PACKAGES=(libclang-dev binutils)
-missing=()
-for p in "${APT_PACKAGES[@]}"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "setup: installing apt packages: ${missing[*]}" >&2
-  if [ "$(id -u)" = 0 ]; then SUDO=""; else SUDO="sudo"; fi
-  $SUDO apt-get update -qq >&2
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >&2
-fi
+APT_PACKAGES=(libclang-dev binutils rustc-web cargo-web rust-web-src gcc-mingw-w64-x86-64 lld-22 llvm-22)
+if [ "${1:-}" = --tests ]; then APT_PACKAGES+=(wine64); fi
+bash scripts/apt-ensure.sh "${APT_PACKAGES[@]}"
 command -v cargo >/dev/null || { echo "setup: cargo (stable Rust) is required: https://rustup.rs" >&2; exit 1; }
 cargo fetch --locked -q >&2 || cargo fetch -q >&2
 bash scripts/setup-venv.sh

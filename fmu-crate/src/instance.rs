@@ -192,14 +192,23 @@ pub struct Instance {
     seen: HashSet<String>,
 }
 
-/// Turns a file URI (fmuResourceLocation) into a path: `file:///a/b%20c/` -> `/a/b c/`.
+/// Turns a file URI (fmuResourceLocation) into a path of this platform: `file:///a/b%20c/` -> `/a/b c/`.
 pub fn uri_to_path(uri: &str) -> Option<PathBuf> {
+    uri_to_path_for(uri, cfg!(windows)).map(PathBuf::from)
+}
+
+/// [`uri_to_path`] for a given platform. On Windows a drive letter loses the URI's leading
+/// slash (`file:///C:/x` -> `C:/x`, as fmpy and the Windows tools write it) and a host names a
+/// network share (`file://server/share/x` -> `//server/share/x`, a UNC path); elsewhere only
+/// an empty host or `localhost` is local.
+fn uri_to_path_for(uri: &str, windows: bool) -> Option<String> {
     let rest = uri
         .strip_prefix("file://")
         .or_else(|| uri.strip_prefix("file:"))?;
-    // file://host/path: only an empty host or localhost is local
     let rest = if let Some(r) = rest.strip_prefix("localhost/") {
         format!("/{r}")
+    } else if windows && !rest.starts_with('/') && uri.starts_with("file://") && !rest.is_empty() {
+        format!("//{rest}")
     } else {
         rest.to_string()
     };
@@ -219,7 +228,12 @@ pub fn uri_to_path(uri: &str) -> Option<PathBuf> {
             i += 1;
         }
     }
-    Some(PathBuf::from(String::from_utf8(out).ok()?))
+    let path = String::from_utf8(out).ok()?;
+    let b = path.as_bytes();
+    if windows && b.len() >= 3 && b[0] == b'/' && b[1].is_ascii_alphabetic() && b[2] == b':' {
+        return Some(path[1..].to_string());
+    }
+    Some(path)
 }
 
 impl Instance {
@@ -992,6 +1006,29 @@ mod tests {
         );
         assert_eq!(uri_to_path("http://x/y"), None);
         assert_eq!(uri_to_path("file:///tmp/%zz"), None);
+    }
+
+    #[test]
+    fn windows_file_uris_become_drive_and_unc_paths() {
+        let w = |u| uri_to_path_for(u, true);
+        assert_eq!(
+            w("file:///C:/Users/a%20b/res/").as_deref(),
+            Some("C:/Users/a b/res/")
+        );
+        assert_eq!(
+            w("file:/D:/fmu/resources").as_deref(),
+            Some("D:/fmu/resources")
+        );
+        assert_eq!(w("file://localhost/C:/x").as_deref(), Some("C:/x"));
+        assert_eq!(
+            w("file://server/share/res").as_deref(),
+            Some("//server/share/res")
+        );
+        assert_eq!(w("file:///tmp/x").as_deref(), Some("/tmp/x"));
+        // elsewhere a drive-letter-like segment is an ordinary folder and a host is not local
+        let l = |u| uri_to_path_for(u, false);
+        assert_eq!(l("file:///C:/x").as_deref(), Some("/C:/x"));
+        assert_eq!(l("file://server/share/res"), None);
     }
 
     #[test]

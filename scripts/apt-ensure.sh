@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs the named Debian packages that are missing (apt-get, with sudo when not root); idempotent: nothing runs when all are there.
+set -euo pipefail
+missing=()
+for p in "$@"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "apt-ensure: installing ${missing[*]}" >&2
+if [ "$(id -u)" = 0 ]; then SUDO=""; else SUDO="sudo"; fi
+$SUDO apt-get update -qq >&2
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >&2
