@@ -7,6 +7,8 @@
 #   bash scripts/bench.sh --quick    short run (CI smoke test, < 30 s)
 #   bash scripts/bench.sh --only steady|transient|diagnose
 #   bash scripts/bench.sh --only threads   transient on all cores vs one (not pinned)
+#   bash scripts/bench.sh --only accuracy [--finest 640]   errors of each grid and scheme against
+#       the extrapolated limit of transient responses, beside their cost (about 10 minutes; 640: longer)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p ecf-cli -p ecf-bench

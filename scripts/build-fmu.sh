@@ -212,11 +212,14 @@ if [ "$LINUX_ONLY" != 1 ]; then
   CLANG_RES=$(ls -d "$(dirname "$LIBCLANG")"/clang/*/include 2>/dev/null | sort -V | tail -1)
   [ -f "$CLANG_RES/stddef.h" ] || { echo "build-fmu: no resource headers of libclang ($LIBCLANG) found" >&2; exit 1; }
   Z=$(python3 -c 'import os, ziglang; print(os.path.join(os.path.dirname(ziglang.__file__), "lib"))')
-  # zig's libSystem stub, with the arm64e.x1 architecture names LLVM's TAPI reader refuses
-  # renamed to arm64 (the stub lists arm64e only, which ld64.lld does not take for arm64)
-  mkdir -p "$XDIR/darwin-sdk"
-  sed 's/arm64e\.x1-/arm64-/g' "$Z/libc/darwin/libSystem.tbd" > "$XDIR/darwin-sdk/libSystem.tbd.new"
-  mv "$XDIR/darwin-sdk/libSystem.tbd.new" "$XDIR/darwin-sdk/libSystem.tbd"
+  # A minimal macOS SDK for rustc (-syslibroot) and zig (headers): zig's libSystem stub, with
+  # the arm64e.x1 architecture names that LLVM's TAPI reader refuses renamed to arm64 (the stub
+  # lists arm64e, which ld64.lld does not take for arm64), and zig's Darwin libc headers
+  SDK="$XDIR/MacOSX.sdk"
+  mkdir -p "$SDK/usr/lib"
+  sed 's/arm64e\.x1-/arm64-/g' "$Z/libc/darwin/libSystem.tbd" > "$SDK/usr/lib/libSystem.tbd.new"
+  mv "$SDK/usr/lib/libSystem.tbd.new" "$SDK/usr/lib/libSystem.tbd"
+  ln -sfn "$Z/libc/include/any-darwin-any" "$SDK/usr/include"
   cross() {  # cross TARGET: builds the FMU library for TARGET into $XDIR/TARGET/release
     local t=$1 u
     u=$(echo "${t//-/_}" | tr '[:lower:]' '[:upper:]')
@@ -229,7 +232,7 @@ if [ "$LINUX_ONLY" != 1 ]; then
           "BINDGEN_EXTRA_CLANG_ARGS_$t=-I$CLANG_RES" /usr/bin/cargo build "${c[@]}" >&2 ;;
       *-apple-darwin)
         env "${e[@]}" "CARGO_TARGET_${u}_LINKER=$ROOT/scripts/cross/link-darwin.sh" \
-          "CARGO_TARGET_${u}_RUSTFLAGS=-C linker-flavor=ld64.lld" ECF_DARWIN_SDK_LIB="$XDIR/darwin-sdk" \
+          "CARGO_TARGET_${u}_RUSTFLAGS=-C linker-flavor=ld64.lld" SDKROOT="$SDK" \
           MACOSX_DEPLOYMENT_TARGET=11.0 "BINDGEN_EXTRA_CLANG_ARGS_$t=-I$CLANG_RES -isystem $Z/libc/include/any-darwin-any" \
           /usr/bin/cargo zigbuild "${c[@]}" >&2 ;;
     esac

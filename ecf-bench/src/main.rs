@@ -1,6 +1,8 @@
 //! `ecf-bench`: cost of the ECF engine against a plain C FASTSIM, transient real-time factors and `ecf diagnose`, measured interleaved in one process (medians).
 //!
-//! Usage: ecf-bench [--quick] [--only steady|transient|diagnose|threads]
+//! Usage: ecf-bench [--quick] [--only steady|transient|diagnose|threads|accuracy] [--finest 320|640]
+mod accuracy;
+
 use creep_core::engine::Scheme;
 use creep_core::{Config, Grid, Inputs, Model};
 use ecf_bench::Contact;
@@ -314,12 +316,29 @@ fn main() {
         .and_then(|p| args.get(p + 1))
         .cloned();
     if let Some(o) = &only {
-        if !["steady", "transient", "diagnose", "threads"].contains(&o.as_str()) {
-            eprintln!("ecf-bench: --only takes steady, transient, diagnose or threads (got '{o}')");
+        if !["steady", "transient", "diagnose", "threads", "accuracy"].contains(&o.as_str()) {
+            eprintln!("ecf-bench: --only takes steady, transient, diagnose, threads or accuracy (got '{o}')");
             std::process::exit(2);
         }
     }
-    let run = |w: &str| only.as_deref().is_none_or(|o| o == w) && w != "threads";
+    let finest = match args
+        .iter()
+        .position(|a| a == "--finest")
+        .map(|p| args.get(p + 1))
+    {
+        None => 320,
+        Some(Some(x)) if x == "320" || x == "640" => x.parse().unwrap_or(320),
+        Some(x) => {
+            eprintln!("ecf-bench: --finest takes 320 or 640 (got {x:?})");
+            std::process::exit(2);
+        }
+    };
+    // the full accuracy table takes minutes: on request; its quick version runs with --quick
+    let run = |w: &str| {
+        only.as_deref().is_none_or(|o| o == w)
+            && w != "threads"
+            && (w != "accuracy" || quick || only.is_some())
+    };
     if run("steady") {
         steady_table(quick);
     }
@@ -328,6 +347,9 @@ fn main() {
     }
     if run("diagnose") {
         diagnose(quick);
+    }
+    if run("accuracy") {
+        accuracy::table(quick, finest);
     }
     // on request only: every other table runs pinned to one core
     if only.as_deref() == Some("threads") {

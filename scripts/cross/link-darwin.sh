@@ -1,15 +1,13 @@
 #!/usr/bin/env bash
-# Linker of the macOS FMU binary (rustc's darwin-lld flavour): LLVM's ld64.lld from Debian,
-# exporting only the FMI functions (_fmi2*), with a relative install name and libSystem from zig's SDK stubs.
+# Linker of the macOS FMU binary (rustc's ld64.lld flavour): LLVM's ld64.lld from Debian, exporting only the FMI functions (_fmi2*), with a relative install name.
 #
 # rustc hands its own exported-symbols list, which also names fmi-sys's `callback_log`; the
 # list is filtered to _fmi2* (the Mach-O counterpart of fmu-crate/exports.map). zig's linker
 # ignores -exported_symbols_list, which is why this is not `zig cc`. ld64.lld signs arm64
 # output ad hoc by default (Apple silicon refuses unsigned code).
-# Environment: ECF_LD64 (default ld64.lld-22), ECF_DARWIN_SDK_LIB (folder with a libSystem.tbd
-# that LLVM reads; scripts/build-fmu.sh makes it from zig's, see there).
+# libSystem comes from the SDK that rustc names with -syslibroot ($SDKROOT; scripts/build-fmu.sh
+# makes a minimal one from zig's stub). Environment: ECF_LD64 (default ld64.lld-22).
 set -euo pipefail
-: "${ECF_DARWIN_SDK_LIB:?link-darwin.sh: set ECF_DARWIN_SDK_LIB to a folder holding libSystem.tbd}"
 args=()
 found=0
 while [ $# -gt 0 ]; do
@@ -25,4 +23,4 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ "$found" = 1 ] || { echo "link-darwin.sh: rustc passed no -exported_symbols_list (not a cdylib link?)" >&2; exit 2; }
-exec "${ECF_LD64:-ld64.lld-22}" "${args[@]}" -L "$ECF_DARWIN_SDK_LIB" -install_name @rpath/ecf_contact.dylib
+exec "${ECF_LD64:-ld64.lld-22}" "${args[@]}" -install_name @rpath/ecf_contact.dylib

@@ -1,0 +1,308 @@
+//! Accuracy per cost: transient responses on refined grids, their observed order of convergence, the extrapolated limit, and each grid's and scheme's error against it beside its cost on one core.
+//!
+//! Cases (F_N = 110 kN, a = 7.63 mm, b = 7.88 mm, presets dry, table4.1, wet): creepage steps
+//! at 5 m/s with 1 ms steps (c_x 1 % -> 15 %), 20 m/s with 0.1 ms (0.2 % -> 5 %), 30 m/s with
+//! 0.25 ms (1 % -> 15 %), and a sinusoidal creepage c_x = 2 % + 1.5 % sin(2 pi 50 Hz t) at
+//! 20 m/s with 0.25 ms steps. Each starts from the steady state of its first input and runs six
+//! contact-transit times 2a/v (the sine: one period after a quarter period).
+//!
+//! Quantities: F_x (N), the rise of the maximum flash temperature T_max - T_bulk (K) and the
+//! frictional power P_fric (W), each a time series at the communication points. The grids
+//! double both ways (20x5, 40x11, 80x21, 160x41, 320x81, optionally 640x161). With the
+//! differences d_k = max_t |X_k(t) - X_{k-1}(t)| of successive grids, the observed order is
+//! p = log2(d_{n-1} / d_n) over the three finest, and the limit is the Richardson
+//! extrapolation L(t) = X_n(t) + (X_n(t) - X_{n-1}(t)) / (2^p - 1) (p clamped to [0.5, 4]);
+//! its uncertainty is stated as max_t |L - X_n| (the size of the correction). Errors are in
+//! % of max_t |L| (for the temperature, of the largest rise).
+use creep_core::engine::Scheme;
+use creep_core::{Config, Contact, Grid, Inputs};
+use std::time::Instant;
+
+/// One transient test case.
+#[derive(Clone, Copy)]
+pub struct Case {
+    pub preset: &'static str,
+    pub v: f64,
+    pub dt: f64,
+    pub kind: Kind,
+}
+
+/// The creepage history of a case.
+#[derive(Clone, Copy)]
+pub enum Kind {
+    /// c_x jumps from `from` to `to` at t = 0.
+    Step { from: f64, to: f64 },
+    /// c_x = mean + amp sin(2 pi f t).
+    Sine { mean: f64, amp: f64, f_hz: f64 },
+}
+
+const FN: f64 = 110e3;
+const A: f64 = 7.63e-3;
+const B: f64 = 7.88e-3;
+
+impl Case {
+    fn name(&self) -> String {
+        match self.kind {
+            Kind::Step { from, to } => format!(
+                "{} step {}->{} % at {} m/s, {} ms steps",
+                self.preset,
+                from * 100.0,
+                to * 100.0,
+                self.v,
+                self.dt * 1e3
+            ),
+            Kind::Sine { mean, amp, f_hz } => format!(
+                "{} sine {}+-{} % {} Hz at {} m/s, {} ms steps",
+                self.preset,
+                mean * 100.0,
+                amp * 100.0,
+                f_hz,
+                self.v,
+                self.dt * 1e3
+            ),
+        }
+    }
+
+    fn steps(&self) -> usize {
+        let dur = match self.kind {
+            Kind::Step { .. } => 6.0 * 2.0 * A / self.v,
+            Kind::Sine { f_hz, .. } => 1.25 / f_hz,
+        };
+        ((dur / self.dt).round() as usize).max(10)
+    }
+
+    fn cx(&self, k: usize) -> f64 {
+        match self.kind {
+            Kind::Step { from, to } => {
+                if k == 0 {
+                    from
+                } else {
+                    to
+                }
+            }
+            // the input held over step k (zero-order hold at its start, as a master does)
+            Kind::Sine { mean, amp, f_hz } => {
+                mean + amp * (2.0 * std::f64::consts::PI * f_hz * (k - 1) as f64 * self.dt).sin()
+            }
+        }
+    }
+}
+
+/// The standard cases of the accuracy benchmark.
+pub fn cases() -> Vec<Case> {
+    let mut v = Vec::new();
+    for preset in ["dry", "table4.1", "wet"] {
+        v.push(Case {
+            preset,
+            v: 5.0,
+            dt: 1e-3,
+            kind: Kind::Step {
+                from: 0.01,
+                to: 0.15,
+            },
+        });
+        v.push(Case {
+            preset,
+            v: 20.0,
+            dt: 1e-4,
+            kind: Kind::Step {
+                from: 0.002,
+                to: 0.05,
+            },
+        });
+        v.push(Case {
+            preset,
+            v: 30.0,
+            dt: 2.5e-4,
+            kind: Kind::Step {
+                from: 0.01,
+                to: 0.15,
+            },
+        });
+        v.push(Case {
+            preset,
+            v: 20.0,
+            dt: 2.5e-4,
+            kind: Kind::Sine {
+                mean: 0.02,
+                amp: 0.015,
+                f_hz: 50.0,
+            },
+        });
+    }
+    v
+}
+
+/// A response: per communication point F_x (N), T_max - T_bulk (K), P_fric (W); and the wall time of the run (s).
+pub struct Response {
+    pub x: Vec<[f64; 3]>,
+    pub wall: f64,
+}
+
+fn config(preset: &str, nx: usize, ny: usize) -> Config {
+    let mut c = Config::preset(preset).expect("preset");
+    c.grid = Grid { nx, ny };
+    c.geometry = creep_core::config::Geometry::SemiAxes {
+        a: A,
+        b: B,
+        fn_ref: FN,
+    };
+    c
+}
+
+/// Runs one case on one grid and scheme (one thread).
+pub fn run(case: &Case, nx: usize, ny: usize, scheme: Scheme) -> Response {
+    let mut c = Contact::new(&config(case.preset, nx, ny)).expect("contact");
+    c.set_scheme(scheme);
+    let t0 = Instant::now();
+    let inp = |cx: f64| Inputs {
+        cx,
+        v: case.v,
+        fn_n: FN,
+        t_bulk: 20.0,
+        ..Inputs::default()
+    };
+    c.steady(&inp(case.cx(0))).expect("steady");
+    let mut x = Vec::with_capacity(case.steps());
+    for k in 1..=case.steps() {
+        let o = c.step(case.dt, &inp(case.cx(k))).expect("step");
+        x.push([o.fx, o.t_max - 20.0, o.p_fric]);
+    }
+    Response {
+        x,
+        wall: t0.elapsed().as_secs_f64(),
+    }
+}
+
+fn max_diff(a: &[[f64; 3]], b: &[[f64; 3]], q: usize) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x[q] - y[q]).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The extrapolated limit of one case: per quantity the observed order, the limit series and its uncertainty (% of max |L|).
+pub struct Limit {
+    pub order: [f64; 3],
+    pub x: Vec<[f64; 3]>,
+    pub uncertainty: [f64; 3],
+    pub scale: [f64; 3],
+}
+
+/// Richardson extrapolation from the three finest responses (coarse to fine).
+pub fn limit(seq: &[&Response]) -> Limit {
+    let n = seq.len();
+    assert!(n >= 3, "three grids at least");
+    let (c, m, f) = (&seq[n - 3].x, &seq[n - 2].x, &seq[n - 1].x);
+    let mut order = [0.0; 3];
+    let mut x = f.clone();
+    let mut unc = [0.0; 3];
+    let mut scale = [0.0; 3];
+    for q in 0..3 {
+        let d1 = max_diff(c, m, q);
+        let d2 = max_diff(m, f, q);
+        let p = if d2 > 0.0 && d1 > 0.0 {
+            (d1 / d2).log2()
+        } else {
+            1.0
+        };
+        order[q] = p;
+        let pc = p.clamp(0.5, 4.0);
+        let r = 1.0 / (2f64.powf(pc) - 1.0);
+        for (k, xk) in x.iter_mut().enumerate() {
+            xk[q] = f[k][q] + (f[k][q] - m[k][q]) * r;
+        }
+        scale[q] = x.iter().map(|v| v[q].abs()).fold(0.0, f64::max).max(1e-300);
+        unc[q] = 100.0 * max_diff(&x, f, q) / scale[q];
+    }
+    Limit {
+        order,
+        x,
+        uncertainty: unc,
+        scale,
+    }
+}
+
+/// Errors of a response against the limit, % of max |L|: largest over the response, mean, at the end.
+pub fn errors(r: &Response, l: &Limit, q: usize) -> (f64, f64, f64) {
+    let n = r.x.len();
+    let d: Vec<f64> =
+        r.x.iter()
+            .zip(&l.x)
+            .map(|(a, b)| 100.0 * (a[q] - b[q]).abs() / l.scale[q])
+            .collect();
+    let max = d.iter().copied().fold(0.0, f64::max);
+    let mean = d.iter().sum::<f64>() / n as f64;
+    (max, mean, d[n - 1])
+}
+
+/// Prints the accuracy table of every case. `finest`: the finest nx (320 or 640); `quick`: two cases, grids up to 80x21.
+pub fn table(quick: bool, finest: usize) {
+    let mut grids = vec![
+        (20usize, 5usize),
+        (40, 11),
+        (80, 21),
+        (160, 41),
+        (320, 81),
+        (640, 161),
+    ];
+    grids.retain(|g| g.0 <= if quick { 80 } else { finest });
+    let all = cases();
+    let cases: Vec<Case> = if quick { vec![all[1], all[5]] } else { all };
+    println!("== accuracy per cost: errors against the extrapolated limit, % of its largest value (F_x, T_max - T_bulk, P_fric); wall time / simulated time on one thread");
+    for case in &cases {
+        let sim = case.steps() as f64 * case.dt;
+        let cells: Vec<Response> = grids
+            .iter()
+            .map(|&(nx, ny)| run(case, nx, ny, Scheme::Cells))
+            .collect();
+        let refs: Vec<&Response> = cells.iter().collect();
+        let l = limit(&refs);
+        println!(
+            "-- {} ({} steps, {:.1} ms)",
+            case.name(),
+            case.steps(),
+            sim * 1e3
+        );
+        println!(
+            "   observed order (three finest grids) F_x {:.2}, T rise {:.2}, P_fric {:.2}; limit uncertainty {:.3} / {:.3} / {:.3} %",
+            l.order[0], l.order[1], l.order[2], l.uncertainty[0], l.uncertainty[1], l.uncertainty[2]
+        );
+        println!(
+            "   {:>8} {:>10} {:>26} {:>26} {:>26} {:>10}",
+            "grid",
+            "scheme",
+            "F_x max/mean/end %",
+            "T rise max/mean/end %",
+            "P_fric max/mean/end %",
+            "x real t"
+        );
+        for (gi, &(nx, ny)) in grids.iter().enumerate() {
+            for scheme in [Scheme::Cells, Scheme::Continuous] {
+                let r;
+                let resp = match scheme {
+                    Scheme::Cells => &cells[gi],
+                    _ => {
+                        r = run(case, nx, ny, scheme);
+                        &r
+                    }
+                };
+                let e: Vec<(f64, f64, f64)> = (0..3).map(|q| errors(resp, &l, q)).collect();
+                let f = |t: (f64, f64, f64)| format!("{:.2} / {:.2} / {:.2}", t.0, t.1, t.2);
+                println!(
+                    "   {:>8} {:>10} {:>26} {:>26} {:>26} {:>10.2}",
+                    format!("{nx}x{ny}"),
+                    if matches!(scheme, Scheme::Cells) {
+                        "cells"
+                    } else {
+                        "continuous"
+                    },
+                    f(e[0]),
+                    f(e[1]),
+                    f(e[2]),
+                    resp.wall / sim
+                );
+            }
+        }
+    }
+}
