@@ -352,6 +352,22 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
     }
 }
 
+/// `sh + d`, kept finite: the accumulated plastic slip saturates at `f64::MAX` instead of
+/// overflowing, and an undefined increment (0/0 of a layer with infinite compliance) leaves it
+/// unchanged. A bristle state is finite, so that every state the model holds can be saved and
+/// read back (the state reader refuses non-finite values).
+#[inline]
+pub fn add_slip(sh: f64, d: f64) -> f64 {
+    let x = sh + d;
+    if x.is_finite() {
+        x
+    } else if x.is_nan() {
+        sh
+    } else {
+        f64::MAX.copysign(x)
+    }
+}
+
 fn elastic_unloading(s: &mut BristleState, dtau: [f64; 2], m: &Material, l: [f64; 2]) {
     let tr = [s.tau[0] + dtau[0], s.tau[1] + dtau[1]];
     let ntr = norm(tr);
@@ -369,7 +385,7 @@ fn elastic_unloading(s: &mut BristleState, dtau: [f64; 2], m: &Material, l: [f64
     let dir = [tr[0] / ntr, tr[1] / ntr];
     let k = k_along(dir, l);
     if perfectly_plastic {
-        s.sh += (ntr - y) / k;
+        s.sh = add_slip(s.sh, (ntr - y) / k);
         s.tau = [y * dir[0], y * dir[1]];
         s.regime = Regime::Sliding;
         return;
@@ -386,7 +402,7 @@ fn elastic_unloading(s: &mut BristleState, dtau: [f64; 2], m: &Material, l: [f64
             break;
         }
     }
-    s.sh += ds.max(0.0);
+    s.sh = add_slip(s.sh, ds.max(0.0));
     let t = voce(m, s.sh);
     s.tau = [t * dir[0], t * dir[1]];
     s.regime = if t >= m.tc2 * (1.0 - 1e-9) {

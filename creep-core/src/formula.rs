@@ -174,9 +174,20 @@ pub struct FormulaEffect {
     pub local: bool,
 }
 
+/// Deepest nesting a formula may have: of the parser's recursion and of the expression tree
+/// (whose compilation, evaluation and drop recurse). 50 levels take less than 96 KiB of stack
+/// in a release build (test `nesting_is_bounded_so_that_no_formula_exhausts_a_small_stack`);
+/// a Horner polynomial of degree 20 needs 41.
+pub const MAX_NESTING: usize = 50;
+
+/// A parsed node and its depth.
+type D = (Node, usize);
+
 struct Parser<'a> {
     s: &'a [u8],
     i: usize,
+    /// Current recursion depth of the parser.
+    nest: usize,
     params: &'a [FormulaParam],
     columns: Vec<String>,
     local: bool,
@@ -198,56 +209,82 @@ impl Parser<'_> {
         self.ws();
         self.s.get(self.i).map(|c| *c as char)
     }
-    fn expr(&mut self) -> Result<Node> {
+    /// Runs `f` one level deeper in the parser's recursion (parentheses, function arguments,
+    /// unary signs, `^` chains); refuses more than [`MAX_NESTING`] levels, so that a formula
+    /// cannot exhaust the stack of the importer's thread.
+    fn descend<T>(&mut self, f: impl FnOnce(&mut Self) -> Result<T>) -> Result<T> {
+        self.nest += 1;
+        if self.nest > MAX_NESTING {
+            return Err(self.too_deep());
+        }
+        let r = f(self);
+        self.nest -= 1;
+        r
+    }
+    fn too_deep(&self) -> CreepError {
+        self.err(&format!(
+            "the formula nests deeper than {MAX_NESTING} levels (parentheses, function calls, signs, operators); write it flatter"
+        ))
+    }
+    /// A binary node; its depth (the longest path to a leaf) is bounded like the nesting.
+    fn bin(&self, c: char, a: D, b: D) -> Result<D> {
+        let d = 1 + a.1.max(b.1);
+        if d > MAX_NESTING {
+            return Err(self.too_deep());
+        }
+        Ok((Node::Bin(c, Box::new(a.0), Box::new(b.0)), d))
+    }
+    fn expr(&mut self) -> Result<D> {
         let mut a = self.term()?;
         while let Some(c) = self.peek() {
             if c == '+' || c == '-' {
                 self.i += 1;
                 let b = self.term()?;
-                a = Node::Bin(c, Box::new(a), Box::new(b));
+                a = self.bin(c, a, b)?;
             } else {
                 break;
             }
         }
         Ok(a)
     }
-    fn term(&mut self) -> Result<Node> {
+    fn term(&mut self) -> Result<D> {
         let mut a = self.power()?;
         while let Some(c) = self.peek() {
             if c == '*' || c == '/' {
                 self.i += 1;
                 let b = self.power()?;
-                a = Node::Bin(c, Box::new(a), Box::new(b));
+                a = self.bin(c, a, b)?;
             } else {
                 break;
             }
         }
         Ok(a)
     }
-    fn power(&mut self) -> Result<Node> {
+    fn power(&mut self) -> Result<D> {
         let a = self.unary()?;
         if self.peek() == Some('^') {
             self.i += 1;
-            let b = self.power()?;
-            return Ok(Node::Bin('^', Box::new(a), Box::new(b)));
+            let b = self.descend(|p| p.power())?;
+            return self.bin('^', a, b);
         }
         Ok(a)
     }
-    fn unary(&mut self) -> Result<Node> {
+    fn unary(&mut self) -> Result<D> {
         if self.peek() == Some('-') {
             self.i += 1;
-            return Ok(Node::Neg(Box::new(self.unary()?)));
+            let (a, d) = self.descend(|p| p.unary())?;
+            return Ok((Node::Neg(Box::new(a)), d + 1));
         }
         if self.peek() == Some('+') {
             self.i += 1;
         }
         self.primary()
     }
-    fn primary(&mut self) -> Result<Node> {
+    fn primary(&mut self) -> Result<D> {
         match self.peek() {
             Some('(') => {
                 self.i += 1;
-                let e = self.expr()?;
+                let e = self.descend(|p| p.expr())?;
                 if self.peek() != Some(')') {
                     return Err(self.err("expected ')'"));
                 }
@@ -269,7 +306,7 @@ impl Parser<'_> {
                 }
                 let t = std::str::from_utf8(&self.s[st..self.i]).unwrap_or("");
                 t.parse::<f64>()
-                    .map(Node::Num)
+                    .map(|x| (Node::Num(x), 0))
                     .map_err(|_| self.err(&format!("bad number '{t}'")))
             }
             Some(c) if c.is_ascii_alphabetic() || c == '_' => {
@@ -284,10 +321,10 @@ impl Parser<'_> {
                     .to_string();
                 if self.peek() == Some('(') {
                     self.i += 1;
-                    let mut args = vec![self.expr()?];
+                    let mut args = vec![self.descend(|p| p.expr())?];
                     while self.peek() == Some(',') {
                         self.i += 1;
-                        args.push(self.expr()?);
+                        args.push(self.descend(|p| p.expr())?);
                     }
                     if self.peek() != Some(')') {
                         return Err(self.err("expected ')' after arguments"));
@@ -303,17 +340,21 @@ impl Parser<'_> {
                     if args.len() != n {
                         return Err(self.err(&format!("{name} takes {n} argument(s)")));
                     }
-                    return Ok(Node::Call(func, args));
+                    let d = 1 + args.iter().map(|a| a.1).max().unwrap_or(0);
+                    if d > MAX_NESTING {
+                        return Err(self.too_deep());
+                    }
+                    return Ok((Node::Call(func, args.into_iter().map(|a| a.0).collect()), d));
                 }
                 if let Some(k) = self.params.iter().position(|p| p.name == name) {
-                    return Ok(Node::Param(k));
+                    return Ok((Node::Param(k), 0));
                 }
                 if let Some(k) = LOCAL.iter().position(|v| *v == name) {
                     self.local = true;
-                    return Ok(Node::Var(k));
+                    return Ok((Node::Var(k), 0));
                 }
                 if let Some(k) = OPERATING.iter().position(|v| *v == name) {
-                    return Ok(Node::Var(LOCAL.len() + k));
+                    return Ok((Node::Var(LOCAL.len() + k), 0));
                 }
                 let k = match self.columns.iter().position(|c| *c == name) {
                     Some(k) => k,
@@ -322,7 +363,7 @@ impl Parser<'_> {
                         self.columns.len() - 1
                     }
                 };
-                Ok(Node::Var(LOCAL.len() + OPERATING.len() + k))
+                Ok((Node::Var(LOCAL.len() + OPERATING.len() + k), 0))
             }
             Some(c) => Err(self.err(&format!("unexpected '{c}'"))),
             None => Err(self.err("unexpected end of formula")),
@@ -423,15 +464,21 @@ impl FormulaEffect {
         let mut p = Parser {
             s: factor.as_bytes(),
             i: 0,
+            nest: 0,
             params: &params,
             columns: Vec::new(),
             local: false,
         };
-        let expr = p.expr().map_err(|e| CreepError::Config {
+        // a long formula is quoted by its start in messages
+        let quoted = match factor.char_indices().nth(80) {
+            Some((k, _)) => format!("{}...", &factor[..k]),
+            None => factor.to_string(),
+        };
+        let (expr, _) = p.expr().map_err(|e| CreepError::Config {
             source_name: format!("formula_effects.{name}.factor"),
             // the parser's own message ("at character N: ..."), without a second prefix
             message: format!(
-                "'{factor}' {}",
+                "'{quoted}' {}",
                 match e {
                     CreepError::Config { message, .. } => message,
                     other => other.to_string(),
@@ -644,6 +691,54 @@ mod tests {
             let f = FormulaEffect::new("p", Target::Mu, src, vec![]).unwrap();
             assert_eq!(f.eval(&[]), want, "{src}");
         }
+    }
+
+    #[test]
+    fn nesting_is_bounded_so_that_no_formula_exhausts_a_small_stack() {
+        // on a thread with 128 KiB of stack (half of the 256 KiB a tool's worker thread may
+        // have; the release build needs less than 96 KiB for MAX_NESTING levels)
+        let r = std::thread::Builder::new()
+            .stack_size(128 * 1024)
+            .spawn(|| {
+                let deep = [
+                    format!("{}1{}", "(".repeat(10_000), ")".repeat(10_000)),
+                    format!("{}1", "1+".repeat(10_000)),
+                    format!("{}1", "2^".repeat(10_000)),
+                    format!("{}1", "-".repeat(10_000)),
+                    format!("{}1{}", "exp(".repeat(10_000), ")".repeat(10_000)),
+                    format!(
+                        "{}1{}",
+                        "(1+".repeat(MAX_NESTING + 1),
+                        ")".repeat(MAX_NESTING + 1)
+                    ),
+                ];
+                let errs: Vec<String> = deep
+                    .iter()
+                    .map(|f| match FormulaEffect::new("d", Target::Mu, f, vec![]) {
+                        Ok(_) => "accepted".to_string(),
+                        Err(e) => e.to_string(),
+                    })
+                    .collect();
+                // the deepest accepted: MAX_NESTING levels
+                let ok = format!(
+                    "{}1{}",
+                    "(1+".repeat(MAX_NESTING - 1),
+                    ")".repeat(MAX_NESTING - 1)
+                );
+                let f = FormulaEffect::new("d", Target::Mu, &ok, vec![]).map(|f| f.eval(&[]));
+                (errs, f.ok())
+            })
+            .unwrap()
+            .join()
+            .expect("no stack overflow");
+        for e in &r.0 {
+            assert!(e.contains("nests deeper than 50 levels"), "{e}");
+            assert!(
+                e.len() < 400,
+                "the message quotes the start of the formula only: {e}"
+            );
+        }
+        assert_eq!(r.1, Some(MAX_NESTING as f64));
     }
 
     #[test]

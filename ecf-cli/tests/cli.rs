@@ -497,3 +497,26 @@ fn step_and_sine_take_the_scheme() {
         "{err}"
     );
 }
+
+#[test]
+fn a_formula_nested_ten_thousand_deep_is_an_error_not_a_crash() {
+    let dir = std::env::temp_dir().join(format!("ecf_cli_deep_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("deep.json");
+    let factor = format!("{}1{}", "(".repeat(10_000), ")".repeat(10_000));
+    std::fs::write(
+        &p,
+        format!(r#"{{"preset": "dry", "formula_effects": [{{"name": "d", "target": "mu", "factor": "{factor}"}}]}}"#),
+    )
+    .unwrap();
+    let (code, out, err) = ecf(&["curve", "--config", p.to_str().unwrap(), "--cx", "0.01"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(out.is_empty());
+    assert!(err.contains("nests deeper than 50 levels"), "{err}");
+    assert!(
+        err.len() < 1000,
+        "the message quotes the formula's start only: {} bytes",
+        err.len()
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

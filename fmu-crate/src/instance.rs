@@ -37,7 +37,8 @@ pub enum Phase {
 }
 
 impl Phase {
-    fn name(self) -> &'static str {
+    /// The mode's name in messages.
+    pub fn name(self) -> &'static str {
         match self {
             Phase::Instantiated => "Instantiated",
             Phase::Initialization => "InitializationMode",
@@ -71,8 +72,6 @@ pub enum Call {
     SetOutput,
     /// fmi2GetFMUstate.
     GetFMUstate,
-    /// fmi2SetFMUstate with a state taken before initialization (it holds no model).
-    SetFMUstateUninitialized,
 }
 
 impl Call {
@@ -94,7 +93,6 @@ impl Call {
             Call::SetParameter => &[Instantiated, Initialization],
             Call::SetOutput => &[],
             Call::GetFMUstate => &[Instantiated, Initialization, StepComplete, Terminated],
-            Call::SetFMUstateUninitialized => &[Instantiated, Initialization, Error],
         }
     }
 
@@ -133,6 +131,10 @@ pub struct Snapshot {
     pub cfg: Option<Config>,
     /// The core model (None before initialization).
     pub model: Option<Model>,
+    /// The mode the instance was in when the state was taken; fmi2SetFMUstate restores it
+    /// (as the Modelica Association's reference FMUs do), so an importer can continue a
+    /// state in a freshly instantiated instance without initializing it.
+    pub phase: Phase,
 }
 
 /// The first non-finite output, as `name = value`.
@@ -160,6 +162,16 @@ pub fn validate_snapshot(s: &Snapshot) -> Result<(), String> {
         .validate()
         .map_err(|e| format!("inputs: {e}"))?;
     s.settings.validate()?;
+    match (s.phase, &s.model) {
+        (Phase::Error, _) => return Err("it was taken in the error state".into()),
+        (Phase::StepComplete | Phase::Terminated, None) => {
+            return Err(format!(
+                "it was taken in mode {} but holds no model",
+                s.phase.name()
+            ))
+        }
+        _ => {}
+    }
     if let Some(m) = &s.model {
         if !m.time().is_finite() {
             return Err(format!("model time = {} s is not finite", m.time()));
@@ -187,6 +199,8 @@ pub struct Instance {
     /// True if `model` holds the outputs of the current inputs and settings (Init mode).
     model_current: bool,
     restored: bool,
+    /// The last fmi2ExitInitializationMode failed (no FMU state is handed out until one succeeds).
+    init_failed: bool,
     logs: Vec<LogMsg>,
     log_events: bool,
     seen: HashSet<String>,
@@ -254,6 +268,7 @@ impl Instance {
             model: None,
             model_current: false,
             restored: false,
+            init_failed: false,
             logs: Vec::new(),
             log_events: logging_on,
             seen: HashSet::new(),
@@ -280,6 +295,7 @@ impl Instance {
         self.model = None;
         self.model_current = false;
         self.restored = false;
+        self.init_failed = false;
         self.seen.clear();
     }
 
@@ -431,8 +447,15 @@ impl Instance {
                 "fmi2ExitInitializationMode: continuing from the FMU state set before".into(),
             );
         } else if let Err(e) = self.current_outputs() {
+            // no half-built model stays behind; the instance stays in initialization mode, so
+            // that the importer can correct a parameter and call fmi2ExitInitializationMode
+            // again, but hands out no FMU state until then (or fmi2Reset)
+            self.model = None;
+            self.model_current = false;
+            self.init_failed = true;
             return self.error(format!("fmi2ExitInitializationMode: {e}"));
         }
+        self.init_failed = false;
         self.phase = Phase::StepComplete;
         let cfg = self
             .model
@@ -825,6 +848,11 @@ impl Instance {
                 "fmi2GetFMUstate: the instance is in the error state; its state is not saved (fmi2Reset or fmi2SetFMUstate first)".into(),
             ));
         }
+        if self.init_failed {
+            return Err(self.error(
+                "fmi2GetFMUstate: the last fmi2ExitInitializationMode failed; its state is not saved (correct the parameters and call fmi2ExitInitializationMode again, or fmi2Reset)".into(),
+            ));
+        }
         Ok(self.get_state())
     }
 
@@ -841,6 +869,7 @@ impl Instance {
             time: self.time,
             cfg,
             model: self.model.clone(),
+            phase: self.phase,
         }
     }
 
@@ -865,12 +894,6 @@ impl Instance {
                 "{F}: the state is refused ({e}); the instance is unchanged"
             ));
         }
-        if s.model.is_none() && !self.allows(Call::SetFMUstateUninitialized) {
-            return self.error(format!(
-                "{F}: the state was taken before initialization and cannot be set in state {}",
-                self.phase.name()
-            ));
-        }
         // the importer's threads and scheme stay (a serialized state does not carry them)
         let (threads, scheme) = (self.settings.threads, self.settings.scheme);
         let mut model = s.model.clone();
@@ -889,14 +912,14 @@ impl Instance {
         self.model = model;
         self.model_current = self.model.is_some();
         self.restored = self.model.is_some();
-        if self.phase == Phase::Error {
-            self.phase = if self.model.is_some() {
-                Phase::StepComplete
-            } else {
-                Phase::Instantiated
-            };
-        }
-        self.event(format!("{F}: state at t = {} s restored", self.time));
+        // the mode the state was taken in, whatever this instance's mode
+        self.phase = s.phase;
+        self.init_failed = false;
+        self.event(format!(
+            "{F}: state at t = {} s restored (mode {})",
+            self.time,
+            self.phase.name()
+        ));
         Status::Ok
     }
 }
@@ -1079,7 +1102,12 @@ mod tests {
             logs[0].text.contains("fastsim") && logs[0].text.contains("dry"),
             "{logs:?}"
         );
+        // still in initialization mode (a corrected parameter and another exit may follow),
+        // but no FMU state is handed out until an exit succeeds or fmi2Reset
         assert_eq!(i.phase(), Phase::Initialization);
+        assert!(i.try_get_state().is_err());
+        assert_eq!(i.reset(), Status::Ok);
+        assert!(i.try_get_state().is_ok());
     }
 
     #[test]

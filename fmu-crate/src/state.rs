@@ -1,6 +1,6 @@
 //! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
 //!
-//! Layout (version 3): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
+//! Layout (version 4): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
 //! name as in modelDescription.xml, f64 value), settings (model, model_set, preset,
 //! config_file, columns, set parameters as (u32 registry index, f64), set effects as (u8
 //! catalogue index, u8), nx, ny as u32 (0 = not set), i32 geometry, u32 count + per geometry
@@ -8,14 +8,17 @@
 //! count + f64 per parameter, u8 bound, u32 nx, u32 ny, u8 geometry kind + 3 × f64, preset
 //! name, u8 + (if formula or Rust effects) the configuration as JSON and, per formula then
 //! Rust effect, u32 count + f64 parameter values), u8 + u32 length + the bytes of
-//! `creep_core::Model::save_state` (the whole bristle grid and heat histories).
+//! `creep_core::Model::save_state` (the whole bristle grid and heat histories), and (since
+//! version 4) u8 the mode the state was taken in (0 Instantiated, 1 InitializationMode,
+//! 2 StepComplete, 3 Terminated), which fmi2SetFMUstate restores; states of versions 2 and 3
+//! are in StepComplete when they hold a model, Instantiated otherwise.
 //! Inputs and geometry values are stored by name, so that a build with another input reads
 //! the state (an input it lacks keeps its start value; a name the reading build does not know
 //! is refused). Version 2 (read, not written) stored the 10 inputs and 5 geometry values
 //! without names, in the fixed orders `V2_INPUTS`, `V2_GEO`.
 //! Strings are u32 length + UTF-8. Nothing follows the last field.
 
-use crate::instance::{validate_snapshot, Snapshot};
+use crate::instance::{validate_snapshot, Phase, Snapshot};
 use crate::settings::{extras_for, Settings};
 use crate::vars::{Geo, In, N_GEO, N_INPUTS};
 use creep_core::bytes::{Reader, Writer};
@@ -26,7 +29,7 @@ use creep_core::{AnyModifier, Bound, Config, Geometry, Grid, Model, ModelKind, M
 /// Magic bytes at the start of a serialized FMU state.
 pub const MAGIC: &[u8; 8] = b"ECFFMUST";
 /// Format version written by this build.
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 
 /// The inputs of format version 2, in its fixed order (version 3 stores each with its name).
 const V2_INPUTS: [&str; 10] = [
@@ -237,7 +240,29 @@ pub fn serialize(s: &Snapshot) -> Vec<u8> {
         }
         None => w.u8(0),
     }
+    w.u8(phase_code(s.phase));
     w.into_inner()
+}
+
+fn phase_code(p: Phase) -> u8 {
+    match p {
+        Phase::Instantiated => 0,
+        Phase::Initialization => 1,
+        Phase::StepComplete => 2,
+        Phase::Terminated => 3,
+        // refused by fmi2GetFMUstate; never serialized
+        Phase::Error => 255,
+    }
+}
+
+fn phase_of(c: u8) -> Result<Phase, String> {
+    Ok(match c {
+        0 => Phase::Instantiated,
+        1 => Phase::Initialization,
+        2 => Phase::StepComplete,
+        3 => Phase::Terminated,
+        _ => return Err(format!("bad mode code {c}")),
+    })
 }
 
 /// Reads a list of named values: version 3 a u32 count and per entry its name and value,
@@ -277,9 +302,9 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
         return Err("not a serialized ecf_contact FMU state (bad magic)".into());
     }
     let v = r.u32()?;
-    if v != 2 && v != VERSION {
+    if !(2..=VERSION).contains(&v) {
         return Err(format!(
-            "serialized FMU state has format version {v}; this build reads versions 2 and {VERSION}"
+            "serialized FMU state has format version {v}; this build reads versions 2 to {VERSION}"
         ));
     }
     let time = r.f64()?;
@@ -349,6 +374,13 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     } else {
         None
     };
+    let phase = if v >= 4 {
+        phase_of(r.u8()?)?
+    } else if model.is_some() {
+        Phase::StepComplete
+    } else {
+        Phase::Instantiated
+    };
     if r.position() != data.len() {
         return Err(format!("{} trailing bytes", data.len() - r.position()));
     }
@@ -358,6 +390,7 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
         time,
         cfg,
         model,
+        phase,
     };
     validate_snapshot(&snap).map_err(|e| format!("invalid state: {e}"))?;
     Ok(snap)

@@ -405,3 +405,35 @@ impl GetStringSafe for Fmu {
         })
     }
 }
+
+#[test]
+fn a_formula_nested_ten_thousand_deep_is_refused_on_a_small_thread() {
+    // issue 25: the recursive parser overflowed the stack of the importer's thread
+    let dir = std::env::temp_dir().join(format!("ecf_deep_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cfg = dir.join("deep.json");
+    let factor = format!("{}1{}", "(".repeat(10_000), ")".repeat(10_000));
+    std::fs::write(
+        &cfg,
+        format!(r#"{{"preset": "dry", "formula_effects": [{{"name": "d", "target": "mu", "factor": "{factor}"}}]}}"#),
+    )
+    .unwrap();
+    let path = cfg.to_str().unwrap().to_string();
+    let (st, msgs) = std::thread::Builder::new()
+        .stack_size(256 * 1024)
+        .spawn(move || {
+            let f = Fmu::new("deep_formula");
+            let st = f.set_string("config_file", &path);
+            (st, f.messages())
+        })
+        .unwrap()
+        .join()
+        .expect("no crash on a 256 KiB thread");
+    assert_eq!(st, ERROR);
+    assert!(
+        msgs.iter()
+            .any(|(_, m)| m.contains("nests deeper than 50 levels")),
+        "{msgs:?}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -553,7 +553,7 @@ impl Contact {
                 let ntr = n2.sqrt();
                 let dir = [tr[0] / ntr, tr[1] / ntr];
                 let kk = ((dir[0] * ilx).powi(2) + (dir[1] * ily).powi(2)).sqrt();
-                s.sh += (ntr - g) / kk;
+                s.sh = bristle::add_slip(s.sh, (ntr - g) / kk);
                 s.tau = [g * dir[0], g * dir[1]];
                 s.regime = bristle::Regime::Sliding;
             }
@@ -880,11 +880,9 @@ impl Contact {
                         1.0
                     };
                     // plastic slip (|trial| - mu p) / k
-                    sh[l] += if live && slide[l] {
-                        (n2 - g * ntr) * ntr * inv
-                    } else {
-                        0.0
-                    };
+                    if live && slide[l] {
+                        sh[l] = bristle::add_slip(sh[l], (n2 - g * ntr) * ntr * inv);
+                    }
                     slide[l] |= !live;
                     t0[l] = tr[0] * scale;
                     t1[l] = tr[1] * scale;
