@@ -176,8 +176,20 @@ pub fn validate_snapshot(s: &Snapshot) -> Result<(), String> {
         if !m.time().is_finite() {
             return Err(format!("model time = {} s is not finite", m.time()));
         }
-        if let Some(x) = m.outputs().to_array().iter().find(|x| !x.is_finite()) {
+        let o = m.outputs();
+        if let Some(x) = o.to_array().iter().find(|x| !x.is_finite()) {
             return Err(format!("an output of the model is {x}"));
+        }
+        // the area fractions of the bristle regimes: each in [0, 1], together 1 (0 at lift-off)
+        let fr = [o.frac_elastic, o.frac_plastic, o.frac_sliding];
+        let sum: f64 = fr.iter().sum();
+        if fr.iter().any(|x| !(-1e-9..=1.0 + 1e-9).contains(x))
+            || !((sum - 1.0).abs() <= 1e-6 || sum == 0.0)
+        {
+            return Err(format!(
+                "the area fractions elastic/plastic/sliding {}/{}/{} do not sum to 1",
+                fr[0], fr[1], fr[2]
+            ));
         }
     }
     Ok(())

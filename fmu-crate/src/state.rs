@@ -491,5 +491,22 @@ mod tests {
         let mut longer = bytes.clone();
         longer.push(0);
         assert!(deserialize(&longer).unwrap_err().contains("trailing"));
+        // a state whose area fractions do not sum to 1 is refused (the model's invariant):
+        // the stored elastic fraction, found by its bit pattern, raised by 0.25
+        let fe = snap.model.as_ref().unwrap().outputs().frac_elastic;
+        let pat = fe.to_le_bytes();
+        let at: Vec<usize> = (0..bytes.len() - 8)
+            .filter(|&k| bytes[k..k + 8] == pat)
+            .collect();
+        assert!(
+            !at.is_empty(),
+            "the elastic fraction {fe} is stored in the state"
+        );
+        let mut odd = bytes.clone();
+        for k in at {
+            odd[k..k + 8].copy_from_slice(&(fe + 0.25).to_le_bytes());
+        }
+        let e = deserialize(&odd).unwrap_err();
+        assert!(e.contains("area fractions"), "{e}");
     }
 }
