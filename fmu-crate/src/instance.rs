@@ -799,7 +799,14 @@ impl Instance {
                 let mut cand = self.inputs;
                 cand[i.index()] = *x;
                 if let Err(e) = core_inputs(&cand).validate() {
-                    return refuse(self, e.to_string());
+                    // the FMU takes FN <= 0 as lift-off: say so beside the core's range
+                    let why = match i {
+                        In::Fn => format!(
+                            "FN = {x} N is above the largest accepted normal force, 1e8 N (FN <= 0 is accepted: lift-off, all forces 0)"
+                        ),
+                        _ => e.to_string(),
+                    };
+                    return refuse(self, why);
                 }
             }
             _ => match Settings::check(&v, x, self.resources.as_deref()) {

@@ -437,3 +437,21 @@ fn a_formula_nested_ten_thousand_deep_is_refused_on_a_small_thread() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn the_normal_force_message_says_what_is_done_with_a_negative_force() {
+    let mut f = Fmu::new("fn_message");
+    assert_eq!(f.init(), OK);
+    assert_eq!(f.set_real("FN", 2e8), ERROR);
+    assert!(
+        f.messages()
+            .iter()
+            .any(|(_, m)| m.contains("1e8 N") && m.contains("FN <= 0 is accepted: lift-off")),
+        "{:?}",
+        f.messages()
+    );
+    // and it is: a negative force is lift-off, not an error
+    assert!(f.set_real("FN", -5.0) <= WARNING);
+    assert!(f.step(1e-3) <= WARNING);
+    assert_eq!(f.get("Fx"), 0.0);
+}
