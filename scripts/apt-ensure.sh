@@ -3,7 +3,8 @@
 set -euo pipefail
 missing=()
 for p in "$@"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+  # "install ok installed" only: a removed package whose configuration files remain is missing
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'ok installed' || missing+=("$p")
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
 echo "apt-ensure: installing ${missing[*]}" >&2

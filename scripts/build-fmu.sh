@@ -157,8 +157,13 @@ fi
 
 bash scripts/setup-venv.sh >&2
 if [ "$LINUX_ONLY" != 1 ]; then
-  # the apt packages of the cross builds (scripts/setup.sh says what each is for)
-  bash scripts/apt-ensure.sh libclang-dev binutils rustc-web cargo-web rust-web-src gcc-mingw-w64-x86-64 lld-22 llvm-22
+  # the apt packages of the cross builds (scripts/setup.sh says what each is for); Debian 12
+  # has them, other distributions may not: then say so and build linux64 alone
+  CROSS_PACKAGES=(libclang-dev binutils rustc-web cargo-web rust-web-src gcc-mingw-w64-x86-64 lld-22 llvm-22)
+  if ! bash scripts/apt-ensure.sh "${CROSS_PACKAGES[@]}"; then
+    echo "build-fmu: WARNING: the Windows and macOS binaries need the Debian 12 packages ${CROSS_PACKAGES[*]}, which could not be installed here: building linux64 only (--linux-only silences this)" >&2
+    LINUX_ONLY=1
+  fi
 fi
 export PATH="$ROOT/.venv/bin:$PATH"
 
@@ -208,8 +213,8 @@ if [ "$LINUX_ONLY" != 1 ]; then
   XDIR="$ROOT/target/cross"
   # bindgen (fmi-sys) runs the host's libclang for each target: its own resource headers
   # (stddef.h, mm_malloc.h) and, for macOS, zig's libc headers of Darwin
-  LIBCLANG=$(ls /usr/lib/llvm-*/lib/libclang.so* 2>/dev/null | sort -V | tail -1)
-  CLANG_RES=$(ls -d "$(dirname "$LIBCLANG")"/clang/*/include 2>/dev/null | sort -V | tail -1)
+  LIBCLANG=$(ls /usr/lib/llvm-*/lib/libclang.so* 2>/dev/null | sort -V | tail -1 || true)
+  CLANG_RES=$(ls -d "$(dirname "${LIBCLANG:-/none}")"/clang/*/include 2>/dev/null | sort -V | tail -1 || true)
   [ -f "$CLANG_RES/stddef.h" ] || { echo "build-fmu: no resource headers of libclang ($LIBCLANG) found" >&2; exit 1; }
   Z=$(python3 -c 'import os, ziglang; print(os.path.join(os.path.dirname(ziglang.__file__), "lib"))')
   # A minimal macOS SDK for rustc (-syslibroot) and zig (headers): zig's libSystem stub, with
@@ -270,9 +275,11 @@ if [ "$LINUX_ONLY" != 1 ]; then
     load=$(llvm-otool-22 -L "$slice" | tail -n +2 | awk '{print $1}')
     [ "$load" = "$(printf '@rpath/ecf_contact.dylib\n/usr/lib/libSystem.B.dylib')" ] || {
       echo "build-fmu: darwin64 $arch: install name and libraries: $(echo $load) (want @rpath/ecf_contact.dylib /usr/lib/libSystem.B.dylib)" >&2; exit 1; }
-    minos=$(llvm-otool-22 -l "$slice" | awk '/LC_BUILD_VERSION/ {b = 1} b && $1 == "minos" {print $2; exit}')
+    # the load commands read once (a reader that stops early would cut the pipe under pipefail)
+    cmds=$(llvm-otool-22 -l "$slice")
+    minos=$(awk '/LC_BUILD_VERSION/ {b = 1} b && $1 == "minos" {print $2; exit}' <<<"$cmds")
     [ "$minos" = 11.0 ] || { echo "build-fmu: darwin64 $arch: minimum macOS '$minos', want 11.0" >&2; exit 1; }
-    if [ "$arch" = arm64 ] && ! llvm-otool-22 -l "$slice" | grep -q LC_CODE_SIGNATURE; then
+    if [ "$arch" = arm64 ] && ! grep -q LC_CODE_SIGNATURE <<<"$cmds"; then
       echo "build-fmu: darwin64 arm64 slice is not signed (Apple silicon refuses it)" >&2; exit 1
     fi
   done

@@ -174,11 +174,16 @@ pub struct FormulaEffect {
     pub local: bool,
 }
 
-/// Deepest nesting a formula may have: of the parser's recursion and of the expression tree
-/// (whose compilation, evaluation and drop recurse). 50 levels take less than 96 KiB of stack
-/// in a release build (test `nesting_is_bounded_so_that_no_formula_exhausts_a_small_stack`);
-/// a Horner polynomial of degree 20 needs 41.
+/// Deepest nesting of a formula in the parser's recursion (parentheses, function arguments,
+/// signs, `^` chains): 50 levels take less than 96 KiB of stack in a release build (test
+/// `nesting_is_bounded_so_that_no_formula_exhausts_a_small_stack`); a Horner polynomial of
+/// degree 20 needs 21.
 pub const MAX_NESTING: usize = 50;
+
+/// Deepest expression tree (operations along one path from the result to a leaf; a flat sum
+/// of n terms has depth n - 1), bounded because its compilation and drop recurse: cheap
+/// frames, so far more than [`MAX_NESTING`].
+pub const MAX_TREE_DEPTH: usize = 1000;
 
 /// A parsed node and its depth.
 type D = (Node, usize);
@@ -223,16 +228,20 @@ impl Parser<'_> {
     }
     fn too_deep(&self) -> CreepError {
         self.err(&format!(
-            "the formula nests deeper than {MAX_NESTING} levels (parentheses, function calls, signs, operators); write it flatter"
+            "the formula nests deeper than {MAX_NESTING} levels (parentheses, function calls, signs, ^ chains); write it with fewer nested levels"
         ))
     }
-    /// A binary node; its depth (the longest path to a leaf) is bounded like the nesting.
-    fn bin(&self, c: char, a: D, b: D) -> Result<D> {
-        let d = 1 + a.1.max(b.1);
-        if d > MAX_NESTING {
-            return Err(self.too_deep());
+    /// A node of depth `d` (the longest path to a leaf), refused beyond [`MAX_TREE_DEPTH`].
+    fn node(&self, n: Node, d: usize) -> Result<D> {
+        if d > MAX_TREE_DEPTH {
+            return Err(self.err(&format!(
+                "the formula has more than {MAX_TREE_DEPTH} operations along one path; split it into several effects"
+            )));
         }
-        Ok((Node::Bin(c, Box::new(a.0), Box::new(b.0)), d))
+        Ok((n, d))
+    }
+    fn bin(&self, c: char, a: D, b: D) -> Result<D> {
+        self.node(Node::Bin(c, Box::new(a.0), Box::new(b.0)), 1 + a.1.max(b.1))
     }
     fn expr(&mut self) -> Result<D> {
         let mut a = self.term()?;
@@ -273,7 +282,7 @@ impl Parser<'_> {
         if self.peek() == Some('-') {
             self.i += 1;
             let (a, d) = self.descend(|p| p.unary())?;
-            return Ok((Node::Neg(Box::new(a)), d + 1));
+            return self.node(Node::Neg(Box::new(a)), d + 1);
         }
         if self.peek() == Some('+') {
             self.i += 1;
@@ -341,10 +350,7 @@ impl Parser<'_> {
                         return Err(self.err(&format!("{name} takes {n} argument(s)")));
                     }
                     let d = 1 + args.iter().map(|a| a.1).max().unwrap_or(0);
-                    if d > MAX_NESTING {
-                        return Err(self.too_deep());
-                    }
-                    return Ok((Node::Call(func, args.into_iter().map(|a| a.0).collect()), d));
+                    return self.node(Node::Call(func, args.into_iter().map(|a| a.0).collect()), d);
                 }
                 if let Some(k) = self.params.iter().position(|p| p.name == name) {
                     return Ok((Node::Param(k), 0));
@@ -488,7 +494,7 @@ impl FormulaEffect {
         if p.peek().is_some() {
             return Err(CreepError::Config {
                 source_name: format!("formula_effects.{name}.factor"),
-                message: format!("'{factor}': unexpected text at character {}", p.i + 1),
+                message: format!("'{quoted}': unexpected text at character {}", p.i + 1),
             });
         }
         let (columns, local) = (p.columns, p.local);
@@ -500,7 +506,7 @@ impl FormulaEffect {
             let x = run(&ops, depth, &params, |_| f64::NAN);
             if !(x.is_finite() && x >= 0.0) {
                 return Err(CreepError::OutOfRange {
-                    field: format!("formula_effects.{name}.factor '{factor}'"),
+                    field: format!("formula_effects.{name}.factor '{quoted}'"),
                     value: x,
                     expected: format!("a factor scaling {} must be finite and >= 0", target.name()),
                 });
@@ -696,13 +702,13 @@ mod tests {
     #[test]
     fn nesting_is_bounded_so_that_no_formula_exhausts_a_small_stack() {
         // on a thread with 128 KiB of stack (half of the 256 KiB a tool's worker thread may
-        // have; the release build needs less than 96 KiB for MAX_NESTING levels)
+        // have; the release build needs less than 96 KiB for MAX_NESTING levels; an unoptimized
+        // build's frames are several times larger)
         let r = std::thread::Builder::new()
-            .stack_size(128 * 1024)
+            .stack_size(if cfg!(debug_assertions) { 1024 } else { 128 } * 1024)
             .spawn(|| {
                 let deep = [
                     format!("{}1{}", "(".repeat(10_000), ")".repeat(10_000)),
-                    format!("{}1", "1+".repeat(10_000)),
                     format!("{}1", "2^".repeat(10_000)),
                     format!("{}1", "-".repeat(10_000)),
                     format!("{}1{}", "exp(".repeat(10_000), ")".repeat(10_000)),
@@ -726,11 +732,26 @@ mod tests {
                     ")".repeat(MAX_NESTING - 1)
                 );
                 let f = FormulaEffect::new("d", Target::Mu, &ok, vec![]).map(|f| f.eval(&[]));
-                (errs, f.ok())
+                // a flat sum is not nested: MAX_TREE_DEPTH + 1 terms are accepted, 10,000
+                // refused by the tree depth (the compile and drop recursion)
+                let flat = |n: usize| {
+                    let src = format!("{}1", "1+".repeat(n - 1));
+                    FormulaEffect::new("s", Target::Mu, &src, vec![])
+                        .map(|f| f.eval(&[]))
+                        .map_err(|e| e.to_string())
+                };
+                (errs, f.ok(), (flat(MAX_TREE_DEPTH + 1), flat(10_000)))
             })
             .unwrap()
             .join()
             .expect("no stack overflow");
+        assert_eq!(r.2 .0, Ok((MAX_TREE_DEPTH + 1) as f64));
+        let e = r.2 .1.clone().unwrap_err();
+        assert!(
+            e.contains("more than 1000 operations along one path"),
+            "{e}"
+        );
+        assert!(e.len() < 400, "{e}");
         for e in &r.0 {
             assert!(e.contains("nests deeper than 50 levels"), "{e}");
             assert!(

@@ -210,7 +210,6 @@ pub struct Instance {
     model: Option<Model>,
     /// True if `model` holds the outputs of the current inputs and settings (Init mode).
     model_current: bool,
-    restored: bool,
     /// The last fmi2ExitInitializationMode failed (no FMU state is handed out until one succeeds).
     init_failed: bool,
     logs: Vec<LogMsg>,
@@ -231,8 +230,14 @@ fn uri_to_path_for(uri: &str, windows: bool) -> Option<String> {
     let rest = uri
         .strip_prefix("file://")
         .or_else(|| uri.strip_prefix("file:"))?;
+    let b = rest.as_bytes();
+    let drive = b.len() >= 2 && b[0].is_ascii_alphabetic() && (b[1] == b':' || b[1] == b'|');
     let rest = if let Some(r) = rest.strip_prefix("localhost/") {
         format!("/{r}")
+    } else if windows && drive {
+        // file://C:/x and file:C:/x (malformed, but written by some Windows tools; | is the
+        // old form of the drive colon)
+        format!("/{}:{}", &rest[..1], &rest[2..])
     } else if windows && !rest.starts_with('/') && uri.starts_with("file://") && !rest.is_empty() {
         format!("//{rest}")
     } else {
@@ -256,8 +261,13 @@ fn uri_to_path_for(uri: &str, windows: bool) -> Option<String> {
     }
     let path = String::from_utf8(out).ok()?;
     let b = path.as_bytes();
-    if windows && b.len() >= 3 && b[0] == b'/' && b[1].is_ascii_alphabetic() && b[2] == b':' {
-        return Some(path[1..].to_string());
+    if windows
+        && b.len() >= 3
+        && b[0] == b'/'
+        && b[1].is_ascii_alphabetic()
+        && (b[2] == b':' || b[2] == b'|')
+    {
+        return Some(format!("{}:{}", &path[1..2], &path[3..]));
     }
     Some(path)
 }
@@ -279,7 +289,6 @@ impl Instance {
             cfg: None,
             model: None,
             model_current: false,
-            restored: false,
             init_failed: false,
             logs: Vec::new(),
             log_events: logging_on,
@@ -306,7 +315,6 @@ impl Instance {
         self.cfg = None;
         self.model = None;
         self.model_current = false;
-        self.restored = false;
         self.init_failed = false;
         self.seen.clear();
     }
@@ -454,11 +462,7 @@ impl Instance {
                 st = st.max(self.warn(format!("fmi2ExitInitializationMode: {n} was set but geometry = {mode} (not {m}, {what}): {n} is ignored")));
             }
         }
-        if self.restored && self.model.is_some() {
-            self.event(
-                "fmi2ExitInitializationMode: continuing from the FMU state set before".into(),
-            );
-        } else if let Err(e) = self.current_outputs() {
+        if let Err(e) = self.current_outputs() {
             // no half-built model stays behind; the instance stays in initialization mode, so
             // that the importer can correct a parameter and call fmi2ExitInitializationMode
             // again, but hands out no FMU state until then (or fmi2Reset)
@@ -602,7 +606,6 @@ impl Instance {
     fn settings_changed(&mut self) {
         self.cfg = None;
         self.model_current = false;
-        self.restored = false;
         if self.phase != Phase::StepComplete {
             self.model = None;
         }
@@ -628,34 +631,47 @@ impl Instance {
                 .ok_or_else(|| "the model is not initialized".to_string());
         }
         if !self.model_current || self.model.is_none() {
-            let cfg = self.config()?.clone();
-            let rebuild = self
-                .model
-                .as_ref()
-                .map(|m| m.config() != &cfg)
-                .unwrap_or(true);
-            if rebuild {
-                self.model = Some(Model::new(&cfg).map_err(|e| e.to_string())?);
+            // a failure leaves no half-built model behind (it would be saved by
+            // fmi2GetFMUstate and stepped after a restore)
+            if let Err(e) = self.build_steady_model() {
+                self.model = None;
+                self.model_current = false;
+                return Err(e);
             }
-            self.apply_how_to_compute()?;
-            let inputs = core_inputs(&self.inputs);
-            let extra = self.extras(&cfg)?;
-            if let Some(m) = self.model.as_mut() {
-                if let Some(x) = &extra {
-                    m.set_extra(x).map_err(|e| e.to_string())?;
-                }
-                m.steady(&inputs).map_err(|e| e.to_string())?;
-                if let Some(bad) = non_finite(&m.outputs()) {
-                    self.model = None;
-                    return Err(format!(
-                        "the steady state of these parameters and inputs is not finite ({bad}); the model cannot be used with them"
-                    ));
-                }
-            }
-            self.model_current = true;
-            self.restored = false;
         }
         Ok(self.model.as_ref().map(|m| m.outputs()).unwrap_or_default())
+    }
+
+    /// Builds (or reuses) the model of the current configuration and sets its grid to the
+    /// steady state of the current inputs (initialization mode).
+    fn build_steady_model(&mut self) -> Result<(), String> {
+        let cfg = self.config()?.clone();
+        let rebuild = self
+            .model
+            .as_ref()
+            .map(|m| m.config() != &cfg)
+            .unwrap_or(true);
+        if rebuild {
+            self.model = Some(Model::new(&cfg).map_err(|e| e.to_string())?);
+        }
+        self.apply_how_to_compute()?;
+        let inputs = core_inputs(&self.inputs);
+        let extra = self.extras(&cfg)?;
+        if let Some(m) = self.model.as_mut() {
+            if let Some(x) = &extra {
+                m.set_extra(x).map_err(|e| e.to_string())?;
+            }
+            m.steady(&inputs).map_err(|e| e.to_string())?;
+            if let Some(bad) = non_finite(&m.outputs()) {
+                self.model = None;
+                return Err(format!(
+                    "the steady state of these parameters and inputs is not finite ({bad}); the model cannot be used with them"
+                ));
+            }
+        }
+        self.model_current = true;
+        self.init_failed = false;
+        Ok(())
     }
 
     /// The data column values of a configuration with formula or custom effects (None
@@ -915,7 +931,11 @@ impl Instance {
         }
         // the importer's threads and scheme stay (a serialized state does not carry them)
         let (threads, scheme) = (self.settings.threads, self.settings.scheme);
-        let mut model = s.model.clone();
+        // a state taken before initialization completed holds at most a provisional model (the
+        // steady state of the inputs it had then): it is rebuilt from the restored inputs at
+        // fmi2ExitInitializationMode, as in the instance that took it
+        let live = matches!(s.phase, Phase::StepComplete | Phase::Terminated);
+        let mut model = if live { s.model.clone() } else { None };
         if let Some(m) = model.as_mut() {
             m.set_scheme(self.settings.scheme());
             if let Err(e) = m.set_threads(threads.max(1)) {
@@ -930,7 +950,6 @@ impl Instance {
         self.cfg = s.cfg.clone();
         self.model = model;
         self.model_current = self.model.is_some();
-        self.restored = self.model.is_some();
         // the mode the state was taken in, whatever this instance's mode
         self.phase = s.phase;
         self.init_failed = false;
@@ -1067,6 +1086,9 @@ mod tests {
             Some("//server/share/res")
         );
         assert_eq!(w("file:///tmp/x").as_deref(), Some("/tmp/x"));
+        assert_eq!(w("file://C:/x/res").as_deref(), Some("C:/x/res"));
+        assert_eq!(w("file:///C|/x").as_deref(), Some("C:/x"));
+        assert_eq!(w("file://D|/x").as_deref(), Some("D:/x"));
         // elsewhere a drive-letter-like segment is an ordinary folder and a host is not local
         let l = |u| uri_to_path_for(u, false);
         assert_eq!(l("file:///C:/x").as_deref(), Some("/C:/x"));

@@ -112,3 +112,37 @@ fn every_state_the_fmu_hands_out_reloads() {
         assert!(a.step(1e-3) <= common::WARNING);
     }
 }
+
+#[test]
+fn a_state_taken_in_initialization_mode_follows_the_inputs_it_holds() {
+    // the state holds the inputs (c_x = 5 %) but the provisional model of c_x = 0.2 %, read
+    // by a GetReal before the input changed: its exit must start from 5 %, as the original does
+    let init = |name: &str| {
+        let f = Fmu::new(name);
+        assert_eq!(f.set_string("preset", "dry"), OK);
+        f.inputs(0.002, 0.0, 0.0, 20.0, 110e3);
+        unsafe {
+            assert_eq!(fmi2SetupExperiment(f.c, 0, 0.0, 0.0, 0, 0.0), OK);
+            assert_eq!(fmi2EnterInitializationMode(f.c), OK);
+        }
+        f
+    };
+    let a = init("modes_init_a");
+    let fx_a = a.get("Fx");
+    assert_eq!(a.set_real("cx", 0.05), OK);
+    let s = a.get_state();
+    let bytes = a.serialize(s);
+    a.free_state(s);
+    assert_eq!(unsafe { fmi2ExitInitializationMode(a.c) }, OK);
+    let want = a.get("Fx");
+    assert!(
+        (want - fx_a).abs() > 1.0,
+        "the input change matters: {fx_a} vs {want}"
+    );
+    let mut b = Fmu::new("modes_init_b");
+    let s = b.deserialize(&bytes).expect("deserialize");
+    b.set_state(s);
+    b.free_state(s);
+    assert_eq!(unsafe { fmi2ExitInitializationMode(b.c) }, OK);
+    assert_eq!(b.get("Fx"), want);
+}
