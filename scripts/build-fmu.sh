@@ -159,8 +159,8 @@ bash scripts/setup-venv.sh >&2
 if [ "$LINUX_ONLY" != 1 ]; then
   # the apt packages of the cross builds (scripts/setup.sh says what each is for); Debian 12
   # has them, other distributions may not: then say so and build linux64 alone
-  CROSS_PACKAGES=(libclang-dev binutils rustc-web cargo-web rust-web-src gcc-mingw-w64-x86-64 lld-22 llvm-22)
-  if ! bash scripts/apt-ensure.sh "${CROSS_PACKAGES[@]}"; then
+  source scripts/cross/packages.sh
+  if ! bash scripts/apt-ensure.sh libclang-dev binutils "${CROSS_PACKAGES[@]}"; then
     echo "build-fmu: WARNING: the Windows and macOS binaries need the Debian 12 packages ${CROSS_PACKAGES[*]}, which could not be installed here: building linux64 only (--linux-only silences this)" >&2
     LINUX_ONLY=1
   fi

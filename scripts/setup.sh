@@ -18,9 +18,9 @@ cd "$(dirname "$0")/.."
 bash scripts/apt-ensure.sh libclang-dev binutils
 # the cross-build and Wine packages are Debian 12's; elsewhere build-fmu.sh builds linux64
 # alone (with a warning) and the Windows test fails, saying Wine is missing
-CROSS=(rustc-web cargo-web rust-web-src gcc-mingw-w64-x86-64 lld-22 llvm-22)
-if [ "${1:-}" = --tests ]; then CROSS+=(wine64); fi
-bash scripts/apt-ensure.sh "${CROSS[@]}" || echo "setup: WARNING: could not install ${CROSS[*]} (Debian 12 packages): the FMU will carry linux64 only" >&2
+source scripts/cross/packages.sh
+if [ "${1:-}" = --tests ]; then CROSS_PACKAGES+=(wine64); fi
+bash scripts/apt-ensure.sh "${CROSS_PACKAGES[@]}" || echo "setup: WARNING: could not install ${CROSS_PACKAGES[*]} (Debian 12 packages): the FMU will carry linux64 only" >&2
 command -v cargo >/dev/null || { echo "setup: cargo (stable Rust) is required: https://rustup.rs" >&2; exit 1; }
 cargo fetch --locked -q >&2 || cargo fetch -q >&2
 bash scripts/setup-venv.sh

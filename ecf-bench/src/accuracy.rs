@@ -93,35 +93,17 @@ impl Case {
 
 /// The standard cases of the accuracy benchmark.
 pub fn cases() -> Vec<Case> {
+    let step = |preset, v, dt, from, to| Case {
+        preset,
+        v,
+        dt,
+        kind: Kind::Step { from, to },
+    };
     let mut v = Vec::new();
     for preset in ["dry", "table4.1", "wet"] {
-        v.push(Case {
-            preset,
-            v: 5.0,
-            dt: 1e-3,
-            kind: Kind::Step {
-                from: 0.01,
-                to: 0.15,
-            },
-        });
-        v.push(Case {
-            preset,
-            v: 20.0,
-            dt: 1e-4,
-            kind: Kind::Step {
-                from: 0.002,
-                to: 0.05,
-            },
-        });
-        v.push(Case {
-            preset,
-            v: 30.0,
-            dt: 2.5e-4,
-            kind: Kind::Step {
-                from: 0.01,
-                to: 0.15,
-            },
-        });
+        v.push(step(preset, 5.0, 1e-3, 0.01, 0.15));
+        v.push(step(preset, 20.0, 1e-4, 0.002, 0.05));
+        v.push(step(preset, 30.0, 2.5e-4, 0.01, 0.15));
         v.push(Case {
             preset,
             v: 20.0,

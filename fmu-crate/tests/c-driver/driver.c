@@ -219,9 +219,11 @@ static fmi2Component start(const Case *c, const char *res) {
     return comp;
 }
 
+static void outputs(fmi2Component comp, fmi2Real *y) { CHECK(F.get_real(comp, OUT_VR, N_OUT, y), fmi2OK); }
+
 static void print_outputs(const char *label, int step, double t, fmi2Component comp) {
     fmi2Real y[N_OUT];
-    CHECK(F.get_real(comp, OUT_VR, N_OUT, y), fmi2OK);
+    outputs(comp, y);
     printf("%s step %d t %.17g", label, step, t);
     for (size_t i = 0; i < N_OUT; i++) printf(" %s %.17g", OUT_NAME[i], y[i]);
     printf("\n");
@@ -238,8 +240,6 @@ static void advance(const Case *c, fmi2Component comp, double *t, int from, int 
         if (print && ((k + 1) % c->print_every == 0 || k + 1 == from + n)) print_outputs(label, k + 1, *t, comp);
     }
 }
-
-static void outputs(fmi2Component comp, fmi2Real *y) { CHECK(F.get_real(comp, OUT_VR, N_OUT, y), fmi2OK); }
 
 static int same(const fmi2Real *a, const fmi2Real *b) { return memcmp(a, b, N_OUT * sizeof(fmi2Real)) == 0; }
 
