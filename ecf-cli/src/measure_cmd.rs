@@ -828,6 +828,7 @@ fn fit_record(r: &ecf_measure::fit::FitResult) -> serde_json::Value {
         "params": params,
         "warnings": r.warnings,
         "termination": r.termination,
+        "starts": r.starts,
     })
 }
 
@@ -867,14 +868,21 @@ fn report_fit(
             "warnings": r.warnings,
             "evaluations": r.evaluations,
             "termination": r.termination,
+            "starts": r.starts,
             "out": out.display().to_string(),
         });
         write_json(w, &v)?;
         return Ok(());
     }
+    // several starts: the first ended stuck at a bound or worse than it started (issue 26)
+    let starts = if r.starts > 1 {
+        format!(" from {} starts", r.starts)
+    } else {
+        String::new()
+    };
     writeln!(
         w,
-        "CV(RMSE) {:.2} % -> {:.2} % ({} model evaluations, {})",
+        "CV(RMSE) {:.2} % -> {:.2} % ({} model evaluations{starts}, {})",
         r.cv_rmse_pct_before, r.cv_rmse_pct_after, r.evaluations, r.termination
     )
     .map_err(io)?;

@@ -386,3 +386,63 @@ fn an_interrupted_report_leaves_no_temporary_files() {
     }
     assert!(interrupted > 0, "no run was interrupted");
 }
+
+/// A configuration JSON of the dry preset with tau_c1 x 1/(1 + k (v - 5)/15).
+fn fall_config(k: f64, min: f64, max: f64) -> String {
+    format!(
+        r#"{{"preset": "dry", "grid": {{"nx": 20, "ny": 7}}, "formula_effects": [{{"name": "fall",
+            "target": "tau_c1", "factor": "1 / (1 + k * (v_mps - 5) / 15)",
+            "params": {{"k": {{"value": {k}, "min": {min}, "max": {max}}}}}}}]}}"#
+    )
+}
+
+#[test]
+fn a_fit_started_on_a_bound_moves_off_it() {
+    let d = dir("onbound");
+    let truth = d.join("truth.json");
+    std::fs::write(&truth, fall_config(2.4, 0.0, 20.0)).unwrap();
+    let mut t = String::from("cx,f,v_mps,fn_kN\n");
+    for v in ["5", "12", "20"] {
+        let (code, out, err) = ecf(&[
+            "curve",
+            "--config",
+            truth.to_str().unwrap(),
+            "--v-mps",
+            v,
+            "--cx",
+            "0.002:0.2:8",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        for l in out.lines().skip(1) {
+            let c: Vec<&str> = l.split(',').collect();
+            t += &format!("{},{},{v},110\n", c[0], c[1]);
+        }
+    }
+    let data = d.join("fall.csv");
+    std::fs::write(&data, t).unwrap();
+    let out = d.join("fitted.json");
+    for (k, min) in [(0.0, 0.0), (0.0, -0.01)] {
+        let start = d.join("start.json");
+        std::fs::write(&start, fall_config(k, min, 20.0)).unwrap();
+        let (code, stdout, err) = ecf(&[
+            "fit",
+            data.to_str().unwrap(),
+            "--config",
+            start.to_str().unwrap(),
+            "--free",
+            "fall.k",
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let r: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        let v = r["params"]["fall.k"].as_f64().unwrap();
+        assert!((v - 2.4).abs() < 0.01, "min {min}: k = {v}");
+        assert_eq!(r["status"]["fall.k"], "determined");
+        assert!(r["starts"].as_u64().unwrap() >= 1);
+        let written: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        assert_eq!(written["fit"]["params"][0]["value"], r["params"]["fall.k"]);
+    }
+}

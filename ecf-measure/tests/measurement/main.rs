@@ -9,6 +9,7 @@ mod common;
 mod custom_effect;
 mod diagnose_hidden_effects;
 mod diagnose_memo;
+mod fit_bounds;
 mod fit_recovers_parameters;
 mod fit_uncertainty;
 mod hpt;
