@@ -73,7 +73,8 @@ pub struct Diagnosis {
     /// One-paragraph verdict in words.
     pub verdict: String,
     /// True when every catalogue effect that applies to the data (Coulomb aside; the
-    /// wheel-slide effect only for rows with |1 + c_x| < 0.5) is already in the configuration.
+    /// wheel-slide effect only for rows with |1 + c_x| < 0.5; the transient and
+    /// elastic-unloading effects only for time series) is already in the configuration.
     pub catalogue_all_on: bool,
 }
 
@@ -322,10 +323,13 @@ pub fn diagnose_with(
         // candidate where rows slide (|1 + c_x| < 0.5) with temperature on
         let slide =
             cfg.has(Effect::Temperature) && data.rows.iter().any(|r| (1.0 + r.cx).abs() < 0.5);
+        // effects that cannot act on these data are not counted as off: the wheel-slide
+        // effect without sliding rows, the transient-only effects on steady rows
         catalogue_all_on = effects::CATALOGUE.iter().all(|i| {
             i.effect == Effect::Coulomb
                 || cfg.has(i.effect)
                 || (i.effect == Effect::SurfaceTimeFlash && !slide)
+                || (matches!(i.effect, Effect::Transient | Effect::ElasticUnloading) && !has_series)
         });
         for info in effects::CATALOGUE {
             let e = info.effect;
