@@ -446,3 +446,60 @@ fn a_fit_started_on_a_bound_moves_off_it() {
         assert_eq!(written["fit"]["params"][0]["value"], r["params"]["fall.k"]);
     }
 }
+
+#[test]
+fn wheel_slide_warnings_reach_compare_diagnose_and_fit() {
+    let d = dir("slide");
+    let mut t = String::from("cx [-],f,series,v_mps,fn_kN\n");
+    for (s, v) in [("A", 10.0), ("B", 20.0)] {
+        for c in [-0.002, -0.01, -0.05, -0.3, -0.95] {
+            t += &format!(
+                "{c},{},{s},{v},110\n",
+                -0.3 * (1.0 - (-f64::abs(c) * 300.0).exp())
+            );
+        }
+    }
+    let data = d.join("slide.csv");
+    std::fs::write(&data, t).unwrap();
+    let common = ["--preset", "dry", "--grid", "20x7"];
+    let run = |cmd: &[&str]| {
+        let mut a: Vec<&str> = cmd.to_vec();
+        a.push(data.to_str().unwrap());
+        a.extend(common);
+        let (code, out, err) = ecf(&a);
+        assert_eq!(code, 0, "{cmd:?}: {err}");
+        out
+    };
+    let c: serde_json::Value = serde_json::from_str(&run(&["compare", "--json"])).unwrap();
+    let ws = c["warnings"]
+        .as_array()
+        .expect("compare JSON has 'warnings'");
+    let slide = ws
+        .iter()
+        .find(|w| {
+            w["message"]
+                .as_str()
+                .unwrap()
+                .starts_with("wheel surface speed")
+        })
+        .expect("wheel slide warned");
+    assert_eq!(slide["rows"], 2);
+    assert_eq!(slide["per_series"][0]["series"], "A");
+    assert_eq!(slide["per_series"][1]["rows"], 1);
+    let text = run(&["compare"]);
+    assert!(
+        text.contains("series A: 1 row(s)") && text.contains("surface_time_flash"),
+        "{text}"
+    );
+    let diag = run(&["diagnose"]);
+    assert!(
+        diag.contains("wheel surface speed") && diag.contains("series B: 1 row(s)"),
+        "{diag}"
+    );
+    let out = d.join("fitted.json");
+    let fit = run(&["fit", "--out", out.to_str().unwrap()]);
+    assert!(fit.contains("wheel surface speed"), "{fit}");
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(written["fit"]["model_warnings"][0]["rows"], 2);
+}

@@ -11,7 +11,7 @@
 //! 3. Candidates are ranked by held-out CV(RMSE). A missing effect is claimed only when the
 //!    best candidate lowers the held-out error by at least `CLAIM_FRACTION` of the baseline.
 
-use crate::evaluate::{predict_with, Memo, Prediction};
+use crate::evaluate::{predict_warned, predict_with, Memo, ModelWarning, Prediction};
 use crate::fit::{default_free, fit_params_with, FitOptions, FreeParam};
 use crate::measure::{cv_rmse_pct, Dataset};
 use creep_core::config::{Config, ModelKind};
@@ -76,6 +76,9 @@ pub struct Diagnosis {
     /// wheel-slide effect only for rows with |1 + c_x| < 0.5; the transient and
     /// elastic-unloading effects only for time series) is already in the configuration.
     pub catalogue_all_on: bool,
+    /// Warnings the model raised for the rows under the configuration as given (wheel slide,
+    /// Péclet condition, ...), counted per series.
+    pub warnings: Vec<ModelWarning>,
 }
 
 fn pearson(x: &[f64], y: &[f64]) -> f64 {
@@ -304,7 +307,7 @@ pub fn diagnose_with(
         memo: Some(&memo),
         tolerance: fit_tolerance,
     };
-    let pred = predict_with(cfg, data, threads, opts.memo)?;
+    let (pred, warnings) = predict_warned(cfg, data, threads)?;
     let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
     let baseline_cv = cv_rmse_pct(&meas, &pred.iter().map(|p| p.f).collect::<Vec<_>>());
     let corr = correlations(data, &pred);
@@ -535,5 +538,6 @@ pub fn diagnose_with(
         missing_effect: missing,
         verdict,
         catalogue_all_on,
+        warnings,
     })
 }

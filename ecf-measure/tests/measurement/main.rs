@@ -14,3 +14,4 @@ mod fit_recovers_parameters;
 mod fit_uncertainty;
 mod hpt;
 mod measurement_files;
+mod model_warnings;
