@@ -24,6 +24,10 @@ use creep_core::Modifier;
 /// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
 pub const CLAIM_FRACTION: f64 = 0.25;
 
+/// A held-out CV(RMSE) up to this many times the noise level counts as at the noise: a model
+/// with nothing missing scores the noise plus what fitting on the other folds adds.
+pub const AT_NOISE: f64 = 1.5;
+
 /// |r| from which an extra column counts as showing strong residual structure.
 pub const STRONG: f64 = 0.3;
 
@@ -76,6 +80,20 @@ pub struct Diagnosis {
     /// wheel-slide effect only for rows with |1 + c_x| < 0.5; the transient and
     /// elastic-unloading effects only for time series) is already in the configuration.
     pub catalogue_all_on: bool,
+    /// Noise level of the measured traction coefficient, estimated from the data alone
+    /// ([`crate::noise::estimate`]); `None` when the file has neither repeats nor curves of
+    /// five points.
+    pub noise: Option<crate::noise::Noise>,
+    /// The best model's held-out CV(RMSE), %: the best candidate's, or the configuration's as
+    /// given when no candidate does better.
+    pub best_heldout_cv_rmse_pct: f64,
+    /// The best model: a candidate's name, or "the configuration as given".
+    pub best_model: String,
+    /// The best held-out CV(RMSE) over the noise level's CV(RMSE) (`None` without an estimate).
+    pub times_noise: Option<f64>,
+    /// Whether the best model is at the noise level (`times_noise` <= [`AT_NOISE`]): `false`
+    /// means something is still missing.
+    pub at_noise: Option<bool>,
     /// Warnings the model raised for the rows under the configuration as given (wheel slide,
     /// Péclet condition, ...), counted per series.
     pub warnings: Vec<ModelWarning>,
@@ -528,6 +546,31 @@ pub fn diagnose_with(
         ),
     };
     let verdict = format!("{preface}{verdict}");
+    // the best model against the noise of the data
+    let noise = crate::noise::estimate(data);
+    let (best_model, best_heldout) = match candidates.first() {
+        Some(c) if c.heldout_cv_rmse_pct < base_heldout => {
+            (c.effect.clone(), c.heldout_cv_rmse_pct)
+        }
+        _ => ("the configuration as given".to_string(), base_heldout),
+    };
+    let times_noise = noise
+        .as_ref()
+        .filter(|n| n.cv_rmse_pct > 0.0)
+        .map(|n| best_heldout / n.cv_rmse_pct);
+    let at_noise = times_noise.map(|t| t <= AT_NOISE);
+    let noise_words = match (&noise, times_noise) {
+        (Some(n), Some(t)) if t <= AT_NOISE => format!(
+            " The best model ({best_model}, held-out {best_heldout:.2} %) is at the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): nothing more is missing that these data can show.",
+            n.cv_rmse_pct, n.sd_f, n.method
+        ),
+        (Some(n), Some(t)) => format!(
+            " The best model ({best_model}, held-out {best_heldout:.2} %) is still {t:.1} times the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): something is still missing. Besides data columns, a formula effect can use the operating point (v_mps, fn_kN, cx, cy, spin_per_m) and the local state (p_GPa, T_C, u_mm, slip_mps) to scale tau_c1, tau_c2, L_e, L_p or mu (docs/measurements.md).",
+            n.cv_rmse_pct, n.sd_f, n.method
+        ),
+        _ => " The noise level of the data could not be estimated (no repeated operating points, no curve of five points or more): whether something is still missing cannot be said.".to_string(),
+    };
+    let verdict = format!("{verdict}{noise_words}");
     Ok(Diagnosis {
         baseline_cv_rmse_pct: baseline_cv,
         baseline_heldout_cv_rmse_pct: base_heldout,
@@ -538,6 +581,11 @@ pub fn diagnose_with(
         missing_effect: missing,
         verdict,
         catalogue_all_on,
+        noise,
+        best_heldout_cv_rmse_pct: best_heldout,
+        best_model,
+        times_noise,
+        at_noise,
         warnings,
     })
 }

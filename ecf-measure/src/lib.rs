@@ -14,3 +14,4 @@ pub mod evaluate;
 pub mod fit;
 pub mod hpt;
 pub mod measure;
+pub mod noise;
