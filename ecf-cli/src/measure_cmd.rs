@@ -339,6 +339,7 @@ pub fn diagnose(
     data: &Dataset,
     threads: usize,
     json: bool,
+    out: Option<&Path>,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
     let bar = indicatif::ProgressBar::new_spinner();
@@ -347,9 +348,27 @@ pub fn diagnose(
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
     );
     bar.enable_steady_tick(std::time::Duration::from_millis(200));
-    let progress = |stage: &str| bar.set_message(format!("refitting with {stage}"));
+    let progress = |stage: &str| {
+        if stage.starts_with("form ") || stage.starts_with("the best forms") {
+            bar.set_message(format!("searching formula forms, {stage}"))
+        } else {
+            bar.set_message(format!("refitting with {stage}"))
+        }
+    };
     let d = ecf_measure::diagnose::diagnose(cfg, data, threads, &progress)?;
     bar.finish_and_clear();
+    // the proposed configuration, written before anything is reported
+    let proposed = d.search.as_ref().and_then(|s| s.proposed_config.as_ref());
+    let written = match (out, proposed) {
+        (Some(p), Some(c)) => {
+            let text = serde_json::to_string_pretty(c)
+                .map_err(|e| CreepError::State(e.to_string()))?
+                + "\n";
+            write_atomically(p, "json.tmp", text.as_bytes())?;
+            Some(p)
+        }
+        _ => None,
+    };
     if json {
         write_json(w, &d)?;
         return Ok(());
@@ -390,8 +409,46 @@ pub fn diagnose(
         )
         .map_err(io)?;
     }
+    if let Some(s) = &d.search {
+        writeln!(
+            w,
+            "\nformula forms ({} of {} tried in {:.1} s), best held-out error first:",
+            s.tried, s.total, s.seconds
+        )
+        .map_err(io)?;
+        for f in s.forms.iter().take(5) {
+            let k = if f.k.is_finite() {
+                format!("k = {:+.4} ± {:.4}", f.k, f.k_stderr)
+            } else {
+                "k not refitted".to_string()
+            };
+            let h = if f.heldout_cv_rmse_pct.is_finite() {
+                format!("held-out {:6.2} %", f.heldout_cv_rmse_pct)
+            } else {
+                format!("screened {:6.2} %", f.screen_cv_rmse_pct)
+            };
+            writeln!(
+                w,
+                "  {:<7} x {:<10} in {:<10} {h}  {k}\n    factor {}",
+                f.target, f.shape, f.variable, f.factor
+            )
+            .map_err(io)?;
+        }
+    }
     write_warnings(w, &d.warnings)?;
     writeln!(w, "\n{}", d.verdict).map_err(io)?;
+    match (written, out, proposed) {
+        (Some(p), _, _) => writeln!(
+            w,
+            "configuration with the proposed formula effect written to {}",
+            p.display()
+        )
+        .map_err(io)?,
+        (None, Some(p), None) => {
+            writeln!(w, "no formula form proposed: {} not written", p.display()).map_err(io)?
+        }
+        _ => {}
+    }
     Ok(())
 }
 

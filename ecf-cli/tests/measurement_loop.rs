@@ -503,3 +503,86 @@ fn wheel_slide_warnings_reach_compare_diagnose_and_fit() {
         serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     assert_eq!(written["fit"]["model_warnings"][0]["rows"], 2);
 }
+
+/// Curves of a configuration file at the given speeds, 110 kN, 10 creepages each.
+fn curves_of(cfg: &std::path::Path, speeds: &[&str]) -> String {
+    let mut t = String::from("cx,f,series,v_mps,fn_kN\n");
+    for v in speeds {
+        let (code, out, err) = ecf(&[
+            "curve",
+            "--config",
+            cfg.to_str().unwrap(),
+            "--v-mps",
+            v,
+            "--cx",
+            "0.002:0.2:10",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        for l in out.lines().skip(1) {
+            let c: Vec<&str> = l.split(',').collect();
+            t += &format!("{},{},v{v},{v},110\n", c[0], c[1]);
+        }
+    }
+    t
+}
+
+#[test]
+fn diagnose_proposes_a_formula_form_and_writes_a_configuration_fit_takes() {
+    let d = dir("forms");
+    let truth = d.join("truth.json");
+    std::fs::write(&truth, fall_config(1.5, 0.0, 20.0)).unwrap();
+    let data = d.join("fall.csv");
+    std::fs::write(&data, curves_of(&truth, &["5", "10", "15", "20"])).unwrap();
+    let prop = d.join("proposed.json");
+    let (code, out, err) = ecf(&[
+        "diagnose",
+        data.to_str().unwrap(),
+        "--preset",
+        "dry",
+        "--grid",
+        "20x7",
+        "--out",
+        prop.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("formula forms (") && out.contains("Proposed: tau_c1 x reciprocal in v_mps"),
+        "{out}"
+    );
+    assert!(out.contains("written to"), "{out}");
+    // the proposed configuration is taken by ecf fit as it stands
+    let fitted = d.join("fitted.json");
+    let (code, fit, err) = ecf(&[
+        "fit",
+        data.to_str().unwrap(),
+        "--config",
+        prop.to_str().unwrap(),
+        "--free",
+        "form_tau_c1.k",
+        "--out",
+        fitted.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let r: serde_json::Value = serde_json::from_str(&fit).unwrap();
+    assert!(r["cv_rmse_pct_after"].as_f64().unwrap() < 1.0, "{fit}");
+    // nothing missing: nothing proposed, nothing written
+    let plain = d.join("plain.json");
+    std::fs::write(
+        &plain,
+        "{\"preset\": \"dry\", \"grid\": {\"nx\": 20, \"ny\": 7}}",
+    )
+    .unwrap();
+    std::fs::write(&data, curves_of(&plain, &["5", "10", "15", "20"])).unwrap();
+    let none = d.join("none.json");
+    let (code, out, err) = ecf(&[
+        "diagnose",
+        data.to_str().unwrap(),
+        "--config",
+        plain.to_str().unwrap(),
+        "--out",
+        none.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("not written") && !none.exists(), "{out}");
+}

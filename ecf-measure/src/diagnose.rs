@@ -94,6 +94,9 @@ pub struct Diagnosis {
     /// Whether the best model is at the noise level (`times_noise` <= [`AT_NOISE`]): `false`
     /// means something is still missing.
     pub at_noise: Option<bool>,
+    /// The search of formula-effect forms, run when the best model is not at the noise level
+    /// ([`crate::search`]); `None` when it did not run.
+    pub search: Option<crate::search::Search>,
     /// Warnings the model raised for the rows under the configuration as given (wheel slide,
     /// Péclet condition, ...), counted per series.
     pub warnings: Vec<ModelWarning>,
@@ -194,7 +197,7 @@ fn folds(data: &Dataset) -> (String, Vec<usize>) {
     )
 }
 
-fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
+pub(crate) fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
     Dataset {
         source: data.source.clone(),
         extra_names: data.extra_names.clone(),
@@ -211,7 +214,7 @@ fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
 }
 
 /// Held-out CV(RMSE): fit `free` on all folds but one, predict that one.
-fn heldout(
+pub(crate) fn heldout(
     cfg: &Config,
     data: &Dataset,
     labels: &[usize],
@@ -307,6 +310,18 @@ pub fn diagnose(
     diagnose_with(cfg, data, threads, Some(FIT_TOLERANCE), progress)
 }
 
+/// [`diagnose_with`] with the time bound of the search of formula forms, s (0: no search).
+pub fn diagnose_search(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    fit_tolerance: Option<f64>,
+    search_seconds: f64,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<Diagnosis> {
+    run(cfg, data, threads, fit_tolerance, search_seconds, progress)
+}
+
 /// [`diagnose`] with the fits' convergence tolerance (`None`: the solver's default, as
 /// [`crate::fit::fit`]).
 pub fn diagnose_with(
@@ -314,6 +329,24 @@ pub fn diagnose_with(
     data: &Dataset,
     threads: usize,
     fit_tolerance: Option<f64>,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<Diagnosis> {
+    run(
+        cfg,
+        data,
+        threads,
+        fit_tolerance,
+        crate::search::SEARCH_SECONDS,
+        progress,
+    )
+}
+
+fn run(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    fit_tolerance: Option<f64>,
+    search_seconds: f64,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Diagnosis> {
     progress("baseline");
@@ -570,7 +603,55 @@ pub fn diagnose_with(
         ),
         _ => " The noise level of the data could not be estimated (no repeated operating points, no curve of five points or more): whether something is still missing cannot be said.".to_string(),
     };
-    let verdict = format!("{verdict}{noise_words}");
+    let mut verdict = format!("{verdict}{noise_words}");
+    // no catalogue effect reaches the noise: search formula forms
+    let search = if cfg.model != ModelKind::Polach && at_noise != Some(true) && search_seconds > 0.0
+    {
+        let s = crate::search::search(
+            cfg,
+            data,
+            &pred,
+            &corr,
+            &labels,
+            &base_free,
+            threads,
+            &opts,
+            best_heldout,
+            noise.as_ref().map(|n| n.cv_rmse_pct),
+            search_seconds,
+            progress,
+        )?;
+        let bound = if s.tried < s.total {
+            format!(", stopped by the time bound of {search_seconds:.0} s")
+        } else {
+            String::new()
+        };
+        let head = format!(
+            " Search of formula forms: {} of {} tried in {:.0} s{bound}.",
+            s.tried, s.total, s.seconds
+        );
+        verdict += &head;
+        verdict += &match (&s.proposed, s.forms.first()) {
+            (Some(f), _) => {
+                let times = noise
+                    .as_ref()
+                    .map(|n| format!(" ({:.1} times the noise level)", f.heldout_cv_rmse_pct / n.cv_rmse_pct))
+                    .unwrap_or_default();
+                format!(
+                    " Proposed: {} x {} in {} (factor {}), k = {:.4} ± {:.4}: held-out CV(RMSE) {:.2} % against {best_heldout:.2} %{times}. The configuration with it, fitted on all rows, is in proposed_config (ecf diagnose --out FILE writes it; ecf fit and the FMU take it as is).",
+                    f.target, f.shape, f.variable, f.factor, f.k, f.k_stderr, f.heldout_cv_rmse_pct
+                )
+            }
+            (None, Some(f)) => format!(
+                " None beats the best model by more than the noise on the held-out folds (best form: {} x {} in {}, held-out {:.2} % against {best_heldout:.2} %): no form is proposed.",
+                f.target, f.shape, f.variable, f.heldout_cv_rmse_pct
+            ),
+            (None, None) => " No form could be evaluated: no form is proposed.".to_string(),
+        };
+        Some(s)
+    } else {
+        None
+    };
     Ok(Diagnosis {
         baseline_cv_rmse_pct: baseline_cv,
         baseline_heldout_cv_rmse_pct: base_heldout,
@@ -586,6 +667,7 @@ pub fn diagnose_with(
         best_model,
         times_noise,
         at_noise,
+        search,
         warnings,
     })
 }

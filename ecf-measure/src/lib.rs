@@ -15,3 +15,4 @@ pub mod fit;
 pub mod hpt;
 pub mod measure;
 pub mod noise;
+pub mod search;

@@ -10,6 +10,7 @@ mod custom_effect;
 mod diagnose_hidden_effects;
 mod diagnose_memo;
 mod diagnose_noise;
+mod diagnose_search;
 mod fit_bounds;
 mod fit_recovers_parameters;
 mod fit_uncertainty;
