@@ -266,8 +266,11 @@ pub(crate) fn search(
         };
         folds.push((train, test, c));
     }
+    // no memo for the screening: every form's configurations are new, so its points would
+    // only be stored, never looked up again (the memory would grow with the forms)
     let screen_opts = FitOptions {
         tolerance: Some(SCREEN_TOLERANCE),
+        memo: None,
         ..*opts
     };
     let screen = |t: Target, factor: &str| -> Result<f64> {
@@ -280,7 +283,7 @@ pub(crate) fn search(
                 param: 0,
             }];
             let fitted = fit_params_with(&c, train, &k, threads, &screen_opts, &|_| {})?.config;
-            let p = predict_with(&fitted, test, threads, opts.memo)?;
+            let p = predict_with(&fitted, test, threads, None)?;
             meas.extend(test.rows.iter().map(|r| r.f));
             model.extend(p.iter().map(|p| p.f));
         }
