@@ -103,6 +103,9 @@ enum Cmd {
         /// Print the diagnosis as JSON ({"baseline_cv_rmse_pct": x, "candidates": [...], "correlations": [...]})
         #[arg(long)]
         json: bool,
+        /// Where to write the configuration with the proposed formula effect, when the search of formula forms proposes one (nothing is written otherwise)
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// One self-contained HTML page: comparison, diagnosis and plots; with --compare-with, before and after side by side
     Report {
@@ -731,9 +734,9 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                 measure_cmd::compare(&cfg, &data, d.threads, json, plots.as_deref(), &mut w)?
             }
         },
-        Cmd::Diagnose { d, json } => {
+        Cmd::Diagnose { d, json, out } => {
             let (cfg, data) = d.load_rows()?;
-            measure_cmd::diagnose(&cfg, &data, d.threads, json, &mut w)?;
+            measure_cmd::diagnose(&cfg, &data, d.threads, json, out.as_deref(), &mut w)?;
         }
         Cmd::Report {
             d,

@@ -2,7 +2,9 @@
 
 use crate::plots::{xy_plot, Set, Style};
 use creep_core::{params, Config, CreepError, Inputs, Model};
-use ecf_measure::evaluate::{compare as cmp, predict, regimes, Prediction};
+use ecf_measure::evaluate::{
+    compare as cmp, predict_warned, regimes, warnings_text, ModelWarning, Prediction,
+};
 use ecf_measure::fit::{default_free, fit_params as run_fit, FreeParam};
 use ecf_measure::measure::Dataset;
 use std::io::Write;
@@ -24,7 +26,7 @@ pub fn compare(
     plots: Option<&Path>,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let pred = predict(cfg, data, threads)?;
+    let (pred, warnings) = predict_warned(cfg, data, threads)?;
     let c = cmp(data, &pred);
     if !c.cv_rmse_pct.is_finite() {
         let mean = data.rows.iter().map(|r| r.f).sum::<f64>() / data.rows.len() as f64;
@@ -43,6 +45,7 @@ pub fn compare(
         let mut v = serde_json::to_value(&c).map_err(|e| CreepError::State(e.to_string()))?;
         v["data"] = serde_json::json!(data.source);
         v["config"] = cfg.to_json();
+        v["warnings"] = serde_json::json!(warnings);
         v["rows"] = serde_json::json!(data
             .rows
             .iter()
@@ -80,6 +83,16 @@ pub fn compare(
             )
             .map_err(io)?;
         }
+        write_warnings(w, &warnings)?;
+    }
+    Ok(())
+}
+
+/// The model's warnings for the rows, each once with its rows counted per series (nothing
+/// when there are none).
+fn write_warnings(w: &mut Vec<u8>, ws: &[ModelWarning]) -> Result<(), CreepError> {
+    if !ws.is_empty() {
+        write!(w, "\n{}", warnings_text(ws)).map_err(io)?;
     }
     Ok(())
 }
@@ -315,7 +328,9 @@ pub fn fit(
     };
     let r = run_fit(cfg, data, &free, threads, &progress)?;
     bar.finish_and_clear();
-    report_fit(&r, out, json, w)
+    // the model's warnings for the rows under the fitted configuration
+    let (_, warnings) = predict_warned(&r.config, data, threads)?;
+    report_fit(&r, &warnings, out, json, w)
 }
 
 /// Diagnoses and reports.
@@ -324,6 +339,7 @@ pub fn diagnose(
     data: &Dataset,
     threads: usize,
     json: bool,
+    out: Option<&Path>,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
     let bar = indicatif::ProgressBar::new_spinner();
@@ -332,9 +348,27 @@ pub fn diagnose(
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
     );
     bar.enable_steady_tick(std::time::Duration::from_millis(200));
-    let progress = |stage: &str| bar.set_message(format!("refitting with {stage}"));
+    let progress = |stage: &str| {
+        if stage.starts_with("form ") || stage.starts_with("the best forms") {
+            bar.set_message(format!("searching formula forms, {stage}"))
+        } else {
+            bar.set_message(format!("refitting with {stage}"))
+        }
+    };
     let d = ecf_measure::diagnose::diagnose(cfg, data, threads, &progress)?;
     bar.finish_and_clear();
+    // the proposed configuration, written before anything is reported
+    let proposed = d.search.as_ref().and_then(|s| s.proposed_config.as_ref());
+    let written = match (out, proposed) {
+        (Some(p), Some(c)) => {
+            let text = serde_json::to_string_pretty(c)
+                .map_err(|e| CreepError::State(e.to_string()))?
+                + "\n";
+            write_atomically(p, "json.tmp", text.as_bytes())?;
+            Some(p)
+        }
+        _ => None,
+    };
     if json {
         write_json(w, &d)?;
         return Ok(());
@@ -375,7 +409,46 @@ pub fn diagnose(
         )
         .map_err(io)?;
     }
+    if let Some(s) = &d.search {
+        writeln!(
+            w,
+            "\nformula forms ({} of {} tried in {:.1} s), best held-out error first:",
+            s.tried, s.total, s.seconds
+        )
+        .map_err(io)?;
+        for f in s.forms.iter().take(5) {
+            let k = if f.k.is_finite() {
+                format!("k = {:+.4} ± {:.4}", f.k, f.k_stderr)
+            } else {
+                "k not refitted".to_string()
+            };
+            let h = if f.heldout_cv_rmse_pct.is_finite() {
+                format!("held-out {:6.2} %", f.heldout_cv_rmse_pct)
+            } else {
+                format!("screened {:6.2} %", f.screen_cv_rmse_pct)
+            };
+            writeln!(
+                w,
+                "  {:<7} x {:<10} in {:<10} {h}  {k}\n    factor {}",
+                f.target, f.shape, f.variable, f.factor
+            )
+            .map_err(io)?;
+        }
+    }
+    write_warnings(w, &d.warnings)?;
     writeln!(w, "\n{}", d.verdict).map_err(io)?;
+    match (written, out, proposed) {
+        (Some(p), _, _) => writeln!(
+            w,
+            "configuration with the proposed formula effect written to {}",
+            p.display()
+        )
+        .map_err(io)?,
+        (None, Some(p), None) => {
+            writeln!(w, "no formula form proposed: {} not written", p.display()).map_err(io)?
+        }
+        _ => {}
+    }
     Ok(())
 }
 
@@ -405,7 +478,7 @@ fn report_column(
     tmp: &Path,
 ) -> Result<Column, CreepError> {
     use base64::Engine;
-    let pred = predict(cfg, data, threads)?;
+    let (pred, warnings) = predict_warned(cfg, data, threads)?;
     let c = cmp(data, &pred);
     let figures = write_plots(cfg, data, &pred, tmp)?;
     let mut h = format!(
@@ -415,6 +488,19 @@ fn report_column(
         esc(&format!("{:?}", cfg.effects.to_vec()))
     );
     h += &format!("<p class=big>CV(RMSE) = <b>{:.2} %</b> overall, {:.2} % for c<sub>x</sub> &ge; 1 % (seed Eq. 2.9)</p>", c.cv_rmse_pct, c.cv_rmse_pct_cx_ge_1pct);
+    for wn in &warnings {
+        let per: Vec<String> = wn
+            .per_series
+            .iter()
+            .map(|c| format!("series {}: {} row(s)", c.series, c.rows))
+            .collect();
+        h += &format!(
+            "<p class=warn>warning ({} row(s); {}): {}</p>",
+            wn.rows,
+            esc(&per.join("; ")),
+            esc(&wn.message)
+        );
+    }
     let mut table = String::from("<table><tr><th>group</th><th>value</th><th>n</th><th>CV(RMSE) %</th><th>mean residual</th></tr>");
     for g in &c.groups {
         table += &format!(
@@ -777,7 +863,7 @@ pub fn fit_hpt(
             .collect(),
     };
     let r = ecf_measure::hpt::fit(cfg, &path.display().to_string(), rows, &free, &|_| {})?;
-    report_fit(&r, out, json, w)
+    report_fit(&r, &[], out, json, w)
 }
 
 /// A JSON number, or "inf" for an infinity (a standard error of a parameter the data do not
@@ -801,7 +887,10 @@ fn param_unit(name: &str) -> &'static str {
 
 /// The `"fit"` record of a fitted configuration: what `ecf report` shows as the table of
 /// fitted parameters (values in display units, standard errors, flags).
-fn fit_record(r: &ecf_measure::fit::FitResult) -> serde_json::Value {
+fn fit_record(
+    r: &ecf_measure::fit::FitResult,
+    model_warnings: &[ModelWarning],
+) -> serde_json::Value {
     let params: Vec<serde_json::Value> = r
         .params
         .iter()
@@ -828,19 +917,22 @@ fn fit_record(r: &ecf_measure::fit::FitResult) -> serde_json::Value {
         "params": params,
         "warnings": r.warnings,
         "termination": r.termination,
+        "starts": r.starts,
+        "model_warnings": model_warnings,
     })
 }
 
 /// Writes the fitted configuration atomically (temporary file, then rename) and reports the fit.
 fn report_fit(
     r: &ecf_measure::fit::FitResult,
+    model_warnings: &[ModelWarning],
     out: &Path,
     json: bool,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
     let mut doc = r.config.to_json();
     if let Some(o) = doc.as_object_mut() {
-        o.insert("fit".into(), fit_record(r));
+        o.insert("fit".into(), fit_record(r, model_warnings));
     }
     let text =
         serde_json::to_string_pretty(&doc).map_err(|e| CreepError::State(e.to_string()))? + "\n";
@@ -867,14 +959,22 @@ fn report_fit(
             "warnings": r.warnings,
             "evaluations": r.evaluations,
             "termination": r.termination,
+            "starts": r.starts,
+            "model_warnings": model_warnings,
             "out": out.display().to_string(),
         });
         write_json(w, &v)?;
         return Ok(());
     }
+    // several starts: the first ended stuck at a bound or worse than it started (issue 26)
+    let starts = if r.starts > 1 {
+        format!(" from {} starts", r.starts)
+    } else {
+        String::new()
+    };
     writeln!(
         w,
-        "CV(RMSE) {:.2} % -> {:.2} % ({} model evaluations, {})",
+        "CV(RMSE) {:.2} % -> {:.2} % ({} model evaluations{starts}, {})",
         r.cv_rmse_pct_before, r.cv_rmse_pct_after, r.evaluations, r.termination
     )
     .map_err(io)?;
@@ -911,6 +1011,7 @@ fn report_fit(
             }
         }
     }
+    write_warnings(w, model_warnings)?;
     writeln!(w, "fitted configuration written to {}", out.display()).map_err(io)?;
     Ok(())
 }

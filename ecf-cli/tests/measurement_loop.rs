@@ -386,3 +386,203 @@ fn an_interrupted_report_leaves_no_temporary_files() {
     }
     assert!(interrupted > 0, "no run was interrupted");
 }
+
+/// A configuration JSON of the dry preset with tau_c1 x 1/(1 + k (v - 5)/15).
+fn fall_config(k: f64, min: f64, max: f64) -> String {
+    format!(
+        r#"{{"preset": "dry", "grid": {{"nx": 20, "ny": 7}}, "formula_effects": [{{"name": "fall",
+            "target": "tau_c1", "factor": "1 / (1 + k * (v_mps - 5) / 15)",
+            "params": {{"k": {{"value": {k}, "min": {min}, "max": {max}}}}}}}]}}"#
+    )
+}
+
+#[test]
+fn a_fit_started_on_a_bound_moves_off_it() {
+    let d = dir("onbound");
+    let truth = d.join("truth.json");
+    std::fs::write(&truth, fall_config(2.4, 0.0, 20.0)).unwrap();
+    let mut t = String::from("cx,f,v_mps,fn_kN\n");
+    for v in ["5", "12", "20"] {
+        let (code, out, err) = ecf(&[
+            "curve",
+            "--config",
+            truth.to_str().unwrap(),
+            "--v-mps",
+            v,
+            "--cx",
+            "0.002:0.2:8",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        for l in out.lines().skip(1) {
+            let c: Vec<&str> = l.split(',').collect();
+            t += &format!("{},{},{v},110\n", c[0], c[1]);
+        }
+    }
+    let data = d.join("fall.csv");
+    std::fs::write(&data, t).unwrap();
+    let out = d.join("fitted.json");
+    for (k, min) in [(0.0, 0.0), (0.0, -0.01)] {
+        let start = d.join("start.json");
+        std::fs::write(&start, fall_config(k, min, 20.0)).unwrap();
+        let (code, stdout, err) = ecf(&[
+            "fit",
+            data.to_str().unwrap(),
+            "--config",
+            start.to_str().unwrap(),
+            "--free",
+            "fall.k",
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let r: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        let v = r["params"]["fall.k"].as_f64().unwrap();
+        assert!((v - 2.4).abs() < 0.01, "min {min}: k = {v}");
+        assert_eq!(r["status"]["fall.k"], "determined");
+        assert!(r["starts"].as_u64().unwrap() >= 1);
+        let written: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        assert_eq!(written["fit"]["params"][0]["value"], r["params"]["fall.k"]);
+    }
+}
+
+#[test]
+fn wheel_slide_warnings_reach_compare_diagnose_and_fit() {
+    let d = dir("slide");
+    let mut t = String::from("cx [-],f,series,v_mps,fn_kN\n");
+    for (s, v) in [("A", 10.0), ("B", 20.0)] {
+        for c in [-0.002, -0.01, -0.05, -0.3, -0.95] {
+            t += &format!(
+                "{c},{},{s},{v},110\n",
+                -0.3 * (1.0 - (-f64::abs(c) * 300.0).exp())
+            );
+        }
+    }
+    let data = d.join("slide.csv");
+    std::fs::write(&data, t).unwrap();
+    let common = ["--preset", "dry", "--grid", "20x7"];
+    let run = |cmd: &[&str]| {
+        let mut a: Vec<&str> = cmd.to_vec();
+        a.push(data.to_str().unwrap());
+        a.extend(common);
+        let (code, out, err) = ecf(&a);
+        assert_eq!(code, 0, "{cmd:?}: {err}");
+        out
+    };
+    let c: serde_json::Value = serde_json::from_str(&run(&["compare", "--json"])).unwrap();
+    let ws = c["warnings"]
+        .as_array()
+        .expect("compare JSON has 'warnings'");
+    let slide = ws
+        .iter()
+        .find(|w| {
+            w["message"]
+                .as_str()
+                .unwrap()
+                .starts_with("wheel surface speed")
+        })
+        .expect("wheel slide warned");
+    assert_eq!(slide["rows"], 2);
+    assert_eq!(slide["per_series"][0]["series"], "A");
+    assert_eq!(slide["per_series"][1]["rows"], 1);
+    let text = run(&["compare"]);
+    assert!(
+        text.contains("series A: 1 row(s)") && text.contains("surface_time_flash"),
+        "{text}"
+    );
+    let diag = run(&["diagnose"]);
+    assert!(
+        diag.contains("wheel surface speed") && diag.contains("series B: 1 row(s)"),
+        "{diag}"
+    );
+    let out = d.join("fitted.json");
+    let fit = run(&["fit", "--out", out.to_str().unwrap()]);
+    assert!(fit.contains("wheel surface speed"), "{fit}");
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(written["fit"]["model_warnings"][0]["rows"], 2);
+}
+
+/// Curves of a configuration file at the given speeds, 110 kN, 10 creepages each.
+fn curves_of(cfg: &std::path::Path, speeds: &[&str]) -> String {
+    let mut t = String::from("cx,f,series,v_mps,fn_kN\n");
+    for v in speeds {
+        let (code, out, err) = ecf(&[
+            "curve",
+            "--config",
+            cfg.to_str().unwrap(),
+            "--v-mps",
+            v,
+            "--cx",
+            "0.002:0.2:10",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        for l in out.lines().skip(1) {
+            let c: Vec<&str> = l.split(',').collect();
+            t += &format!("{},{},v{v},{v},110\n", c[0], c[1]);
+        }
+    }
+    t
+}
+
+#[test]
+fn diagnose_proposes_a_formula_form_and_writes_a_configuration_fit_takes() {
+    let d = dir("forms");
+    let truth = d.join("truth.json");
+    std::fs::write(&truth, fall_config(1.5, 0.0, 20.0)).unwrap();
+    let data = d.join("fall.csv");
+    std::fs::write(&data, curves_of(&truth, &["5", "10", "15", "20"])).unwrap();
+    let prop = d.join("proposed.json");
+    let (code, out, err) = ecf(&[
+        "diagnose",
+        data.to_str().unwrap(),
+        "--preset",
+        "dry",
+        "--grid",
+        "20x7",
+        "--out",
+        prop.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("formula forms (") && out.contains("Proposed: tau_c1 x reciprocal in v_mps"),
+        "{out}"
+    );
+    assert!(out.contains("written to"), "{out}");
+    // the proposed configuration is taken by ecf fit as it stands
+    let fitted = d.join("fitted.json");
+    let (code, fit, err) = ecf(&[
+        "fit",
+        data.to_str().unwrap(),
+        "--config",
+        prop.to_str().unwrap(),
+        "--free",
+        "form_tau_c1.k",
+        "--out",
+        fitted.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let r: serde_json::Value = serde_json::from_str(&fit).unwrap();
+    assert!(r["cv_rmse_pct_after"].as_f64().unwrap() < 1.0, "{fit}");
+    // nothing missing: nothing proposed, nothing written
+    let plain = d.join("plain.json");
+    std::fs::write(
+        &plain,
+        "{\"preset\": \"dry\", \"grid\": {\"nx\": 20, \"ny\": 7}}",
+    )
+    .unwrap();
+    std::fs::write(&data, curves_of(&plain, &["5", "10", "15", "20"])).unwrap();
+    let none = d.join("none.json");
+    let (code, out, err) = ecf(&[
+        "diagnose",
+        data.to_str().unwrap(),
+        "--config",
+        plain.to_str().unwrap(),
+        "--out",
+        none.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("not written") && !none.exists(), "{out}");
+}

@@ -11,7 +11,7 @@
 //! 3. Candidates are ranked by held-out CV(RMSE). A missing effect is claimed only when the
 //!    best candidate lowers the held-out error by at least `CLAIM_FRACTION` of the baseline.
 
-use crate::evaluate::{predict_with, Memo, Prediction};
+use crate::evaluate::{predict_warned, predict_with, Memo, ModelWarning, Prediction};
 use crate::fit::{default_free, fit_params_with, FitOptions, FreeParam};
 use crate::measure::{cv_rmse_pct, Dataset};
 use creep_core::config::{Config, ModelKind};
@@ -23,6 +23,10 @@ use creep_core::Modifier;
 
 /// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
 pub const CLAIM_FRACTION: f64 = 0.25;
+
+/// A held-out CV(RMSE) up to this many times the noise level counts as at the noise: a model
+/// with nothing missing scores the noise plus what fitting on the other folds adds.
+pub const AT_NOISE: f64 = 1.5;
 
 /// |r| from which an extra column counts as showing strong residual structure.
 pub const STRONG: f64 = 0.3;
@@ -73,8 +77,29 @@ pub struct Diagnosis {
     /// One-paragraph verdict in words.
     pub verdict: String,
     /// True when every catalogue effect that applies to the data (Coulomb aside; the
-    /// wheel-slide effect only for rows with |1 + c_x| < 0.5) is already in the configuration.
+    /// wheel-slide effect only for rows with |1 + c_x| < 0.5; the transient and
+    /// elastic-unloading effects only for time series) is already in the configuration.
     pub catalogue_all_on: bool,
+    /// Noise level of the measured traction coefficient, estimated from the data alone
+    /// ([`crate::noise::estimate`]); `None` when the file has neither repeats nor curves of
+    /// five points.
+    pub noise: Option<crate::noise::Noise>,
+    /// The best model's held-out CV(RMSE), %: the best candidate's, or the configuration's as
+    /// given when no candidate does better.
+    pub best_heldout_cv_rmse_pct: f64,
+    /// The best model: a candidate's name, or "the configuration as given".
+    pub best_model: String,
+    /// The best held-out CV(RMSE) over the noise level's CV(RMSE) (`None` without an estimate).
+    pub times_noise: Option<f64>,
+    /// Whether the best model is at the noise level (`times_noise` <= [`AT_NOISE`]): `false`
+    /// means something is still missing.
+    pub at_noise: Option<bool>,
+    /// The search of formula-effect forms, run when the best model is not at the noise level
+    /// ([`crate::search`]); `None` when it did not run.
+    pub search: Option<crate::search::Search>,
+    /// Warnings the model raised for the rows under the configuration as given (wheel slide,
+    /// Péclet condition, ...), counted per series.
+    pub warnings: Vec<ModelWarning>,
 }
 
 fn pearson(x: &[f64], y: &[f64]) -> f64 {
@@ -172,7 +197,7 @@ fn folds(data: &Dataset) -> (String, Vec<usize>) {
     )
 }
 
-fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
+pub(crate) fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
     Dataset {
         source: data.source.clone(),
         extra_names: data.extra_names.clone(),
@@ -189,7 +214,7 @@ fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
 }
 
 /// Held-out CV(RMSE): fit `free` on all folds but one, predict that one.
-fn heldout(
+pub(crate) fn heldout(
     cfg: &Config,
     data: &Dataset,
     labels: &[usize],
@@ -285,6 +310,18 @@ pub fn diagnose(
     diagnose_with(cfg, data, threads, Some(FIT_TOLERANCE), progress)
 }
 
+/// [`diagnose_with`] with the time bound of the search of formula forms, s (0: no search).
+pub fn diagnose_search(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    fit_tolerance: Option<f64>,
+    search_seconds: f64,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<Diagnosis> {
+    run(cfg, data, threads, fit_tolerance, search_seconds, progress)
+}
+
 /// [`diagnose`] with the fits' convergence tolerance (`None`: the solver's default, as
 /// [`crate::fit::fit`]).
 pub fn diagnose_with(
@@ -292,6 +329,24 @@ pub fn diagnose_with(
     data: &Dataset,
     threads: usize,
     fit_tolerance: Option<f64>,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<Diagnosis> {
+    run(
+        cfg,
+        data,
+        threads,
+        fit_tolerance,
+        crate::search::SEARCH_SECONDS,
+        progress,
+    )
+}
+
+fn run(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    fit_tolerance: Option<f64>,
+    search_seconds: f64,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Diagnosis> {
     progress("baseline");
@@ -303,7 +358,7 @@ pub fn diagnose_with(
         memo: Some(&memo),
         tolerance: fit_tolerance,
     };
-    let pred = predict_with(cfg, data, threads, opts.memo)?;
+    let (pred, warnings) = predict_warned(cfg, data, threads)?;
     let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
     let baseline_cv = cv_rmse_pct(&meas, &pred.iter().map(|p| p.f).collect::<Vec<_>>());
     let corr = correlations(data, &pred);
@@ -322,10 +377,13 @@ pub fn diagnose_with(
         // candidate where rows slide (|1 + c_x| < 0.5) with temperature on
         let slide =
             cfg.has(Effect::Temperature) && data.rows.iter().any(|r| (1.0 + r.cx).abs() < 0.5);
+        // effects that cannot act on these data are not counted as off: the wheel-slide
+        // effect without sliding rows, the transient-only effects on steady rows
         catalogue_all_on = effects::CATALOGUE.iter().all(|i| {
             i.effect == Effect::Coulomb
                 || cfg.has(i.effect)
                 || (i.effect == Effect::SurfaceTimeFlash && !slide)
+                || (matches!(i.effect, Effect::Transient | Effect::ElasticUnloading) && !has_series)
         });
         for info in effects::CATALOGUE {
             let e = info.effect;
@@ -521,6 +579,79 @@ pub fn diagnose_with(
         ),
     };
     let verdict = format!("{preface}{verdict}");
+    // the best model against the noise of the data
+    let noise = crate::noise::estimate(data);
+    let (best_model, best_heldout) = match candidates.first() {
+        Some(c) if c.heldout_cv_rmse_pct < base_heldout => {
+            (c.effect.clone(), c.heldout_cv_rmse_pct)
+        }
+        _ => ("the configuration as given".to_string(), base_heldout),
+    };
+    let times_noise = noise
+        .as_ref()
+        .filter(|n| n.cv_rmse_pct > 0.0)
+        .map(|n| best_heldout / n.cv_rmse_pct);
+    let at_noise = times_noise.map(|t| t <= AT_NOISE);
+    let noise_words = match (&noise, times_noise) {
+        (Some(n), Some(t)) if t <= AT_NOISE => format!(
+            " The best model ({best_model}, held-out {best_heldout:.2} %) is at the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): nothing more is missing that these data can show.",
+            n.cv_rmse_pct, n.sd_f, n.method
+        ),
+        (Some(n), Some(t)) => format!(
+            " The best model ({best_model}, held-out {best_heldout:.2} %) is still {t:.1} times the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): something is still missing. Besides data columns, a formula effect can use the operating point (v_mps, fn_kN, cx, cy, spin_per_m) and the local state (p_GPa, T_C, u_mm, slip_mps) to scale tau_c1, tau_c2, L_e, L_p or mu (docs/measurements.md).",
+            n.cv_rmse_pct, n.sd_f, n.method
+        ),
+        _ => " The noise level of the data could not be estimated (no repeated operating points, no curve of five points or more): whether something is still missing cannot be said.".to_string(),
+    };
+    let mut verdict = format!("{verdict}{noise_words}");
+    // no catalogue effect reaches the noise: search formula forms
+    let search = if cfg.model != ModelKind::Polach && at_noise != Some(true) && search_seconds > 0.0
+    {
+        let s = crate::search::search(
+            cfg,
+            data,
+            &pred,
+            &corr,
+            &labels,
+            &base_free,
+            threads,
+            &opts,
+            best_heldout,
+            noise.as_ref().map(|n| n.cv_rmse_pct),
+            search_seconds,
+            progress,
+        )?;
+        let bound = if s.tried < s.total {
+            format!(", stopped by the time bound of {search_seconds:.0} s")
+        } else {
+            String::new()
+        };
+        let head = format!(
+            " Search of formula forms: {} of {} tried in {:.0} s{bound}.",
+            s.tried, s.total, s.seconds
+        );
+        verdict += &head;
+        verdict += &match (&s.proposed, s.forms.first()) {
+            (Some(f), _) => {
+                let times = noise
+                    .as_ref()
+                    .map(|n| format!(" ({:.1} times the noise level)", f.heldout_cv_rmse_pct / n.cv_rmse_pct))
+                    .unwrap_or_default();
+                format!(
+                    " Proposed: {} x {} in {} (factor {}), k = {:.4} ± {:.4}: held-out CV(RMSE) {:.2} % against {best_heldout:.2} %{times}. The configuration with it, fitted on all rows, is in proposed_config (ecf diagnose --out FILE writes it; ecf fit and the FMU take it as is).",
+                    f.target, f.shape, f.variable, f.factor, f.k, f.k_stderr, f.heldout_cv_rmse_pct
+                )
+            }
+            (None, Some(f)) => format!(
+                " None beats the best model by more than the noise on the held-out folds (best form: {} x {} in {}, held-out {:.2} % against {best_heldout:.2} %): no form is proposed.",
+                f.target, f.shape, f.variable, f.heldout_cv_rmse_pct
+            ),
+            (None, None) => " No form could be evaluated: no form is proposed.".to_string(),
+        };
+        Some(s)
+    } else {
+        None
+    };
     Ok(Diagnosis {
         baseline_cv_rmse_pct: baseline_cv,
         baseline_heldout_cv_rmse_pct: base_heldout,
@@ -531,5 +662,12 @@ pub fn diagnose_with(
         missing_effect: missing,
         verdict,
         catalogue_all_on,
+        noise,
+        best_heldout_cv_rmse_pct: best_heldout,
+        best_model,
+        times_noise,
+        at_noise,
+        search,
+        warnings,
     })
 }

@@ -61,6 +61,7 @@ fn run_job(
     job: &Job,
     cache: &mut BTreeMap<Option<(u64, u64, u64)>, Model>,
     out: &mut Vec<(usize, Prediction)>,
+    warns: &mut Vec<(usize, Vec<String>)>,
 ) -> Result<()> {
     match job {
         Job::Steady(i) => {
@@ -76,6 +77,10 @@ fn run_job(
                 m.set_extra(&extras(data, r))?;
             }
             let o = m.steady(&r.inputs())?;
+            let w = m.take_warnings();
+            if !w.is_empty() {
+                warns.push((*i, w));
+            }
             out.push((
                 *i,
                 Prediction {
@@ -101,6 +106,10 @@ fn run_job(
                     None => m.steady(&r.inputs())?,
                     Some(p) => m.step(r.t.unwrap_or(0.0) - p.t.unwrap_or(0.0), &r.inputs())?,
                 };
+                let w = m.take_warnings();
+                if !w.is_empty() {
+                    warns.push((i, w));
+                }
                 let dcx = match prev {
                     Some(p) => (r.cx - p.cx) / (r.t.unwrap_or(0.0) - p.t.unwrap_or(0.0)),
                     None => 0.0,
@@ -294,6 +303,113 @@ pub fn predict_with(
     threads: usize,
     memo: Option<&Memo>,
 ) -> Result<Vec<Prediction>> {
+    Ok(predict_inner(cfg, data, threads, memo)?.0)
+}
+
+/// [`predict`], with the warnings the model raised for the rows (wheel slide, Péclet
+/// condition, ...), grouped by kind and counted per series ([`ModelWarning`]).
+pub fn predict_warned(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+) -> Result<(Vec<Prediction>, Vec<ModelWarning>)> {
+    let (pred, per_row) = predict_inner(cfg, data, threads, None)?;
+    Ok((pred, group_warnings(data, &per_row)))
+}
+
+/// One kind of warning the model raised, with the rows it was raised for.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct ModelWarning {
+    /// The model's message for the first row it was raised for (its numbers are that row's).
+    pub message: String,
+    /// Number of rows it was raised for.
+    pub rows: usize,
+    /// Rows per series, in the file's order of series.
+    pub per_series: Vec<SeriesWarningCount>,
+}
+
+/// How many rows of one series a warning was raised for.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct SeriesWarningCount {
+    /// Series name.
+    pub series: String,
+    /// Rows of the series.
+    pub rows: usize,
+    /// Their lines in the file.
+    pub lines: Vec<usize>,
+}
+
+/// The kind of a warning: its text before the first digit (the numbers are the row's).
+fn warning_kind(m: &str) -> &str {
+    m.find(|c: char| c.is_ascii_digit())
+        .map(|i| &m[..i])
+        .unwrap_or(m)
+}
+
+fn group_warnings(data: &Dataset, per_row: &[Vec<String>]) -> Vec<ModelWarning> {
+    let mut out: Vec<ModelWarning> = Vec::new();
+    for (r, ws) in data.rows.iter().zip(per_row) {
+        for w in ws {
+            let k = warning_kind(w);
+            let i = match out.iter().position(|x| warning_kind(&x.message) == k) {
+                Some(i) => i,
+                None => {
+                    out.push(ModelWarning {
+                        message: w.clone(),
+                        rows: 0,
+                        per_series: Vec::new(),
+                    });
+                    out.len() - 1
+                }
+            };
+            let mw = &mut out[i];
+            mw.rows += 1;
+            match mw.per_series.iter_mut().find(|s| s.series == r.series) {
+                Some(s) => {
+                    s.rows += 1;
+                    s.lines.push(r.line);
+                }
+                None => mw.per_series.push(SeriesWarningCount {
+                    series: r.series.clone(),
+                    rows: 1,
+                    lines: vec![r.line],
+                }),
+            }
+        }
+    }
+    out
+}
+
+/// The warnings in words for a report: each message once, then its rows counted per series.
+pub fn warnings_text(ws: &[ModelWarning]) -> String {
+    let mut s = String::new();
+    for w in ws {
+        s += &format!("warning ({} row(s)): {}\n", w.rows, w.message);
+        let per: Vec<String> = w
+            .per_series
+            .iter()
+            .map(|c| {
+                format!(
+                    "series {}: {} row(s) (line(s) {})",
+                    c.series,
+                    c.rows,
+                    lines_text(&c.lines)
+                )
+            })
+            .collect();
+        s += &format!("  {}\n", per.join("; "));
+    }
+    s
+}
+
+/// Predictions and, per row, the warnings the model raised for it (none for points looked up
+/// in the memo).
+fn predict_inner(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    memo: Option<&Memo>,
+) -> Result<(Vec<Prediction>, Vec<Vec<String>>)> {
     check_columns(cfg, data)?;
     let cfg_id = memo.map(|m| m.config_id(cfg));
     // extra columns that change the model: those the effects use
@@ -368,7 +484,8 @@ pub fn predict_with(
         jobs.push(Job::Series(idx));
     }
     let threads = threads.clamp(1, 64).min(jobs.len().max(1));
-    let mut results: Vec<Result<Vec<(usize, Prediction)>>> = Vec::new();
+    type Done = (Vec<(usize, Prediction)>, Vec<(usize, Vec<String>)>);
+    let mut results: Vec<Result<Done>> = Vec::new();
     std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
@@ -376,10 +493,11 @@ pub fn predict_with(
                 s.spawn(move || {
                     let mut cache = BTreeMap::new();
                     let mut out = Vec::new();
+                    let mut warns = Vec::new();
                     for job in jobs.iter().skip(t).step_by(threads) {
-                        run_job(cfg, data, job, &mut cache, &mut out)?;
+                        run_job(cfg, data, job, &mut cache, &mut out, &mut warns)?;
                     }
-                    Ok(out)
+                    Ok((out, warns))
                 })
             })
             .collect();
@@ -393,8 +511,11 @@ pub fn predict_with(
     let mut pred = vec![Prediction::default(); data.rows.len()];
     let looked_up = by_point.iter().filter(|p| p.is_some()).count();
     let mut computed = Vec::new();
+    let mut warned: Vec<(usize, Vec<String>)> = Vec::new();
     for r in results {
-        for (i, p) in r? {
+        let (r, w) = r?;
+        warned.extend(w);
+        for (i, p) in r {
             if data.rows[i].t.is_some() {
                 pred[i] = p;
             } else {
@@ -446,7 +567,24 @@ pub fn predict_with(
             ),
         });
     }
-    Ok(pred)
+    // a steady point's warnings hold for every row of that point
+    let mut per_row: Vec<Vec<String>> = vec![Vec::new(); data.rows.len()];
+    let mut per_point: std::collections::HashMap<usize, Vec<String>> = Default::default();
+    for (i, w) in warned {
+        if data.rows[i].t.is_some() {
+            per_row[i] = w;
+        } else {
+            per_point.insert(of_row[i], w);
+        }
+    }
+    for (i, r) in data.rows.iter().enumerate() {
+        if r.t.is_none() {
+            if let Some(w) = per_point.get(&of_row[i]) {
+                per_row[i] = w.clone();
+            }
+        }
+    }
+    Ok((pred, per_row))
 }
 
 /// CV(RMSE) of one group of rows.

@@ -5,6 +5,13 @@
 //! bounded below only (or with an upper bound far above its value), and a logistic map for a
 //! finite interval. The Jacobian is a forward difference in z. Standard errors come from the
 //! covariance s^2 (J^T J)^-1 in parameter units at the optimum, s^2 = RSS/(n - k).
+//!
+//! A fit never ends worse than it started (issue 26): a start on (or within a thousandth of
+//! the interval of) a bound, where the change of variables has no slope, begins a little
+//! inside; a result stuck at a bound, or worse than the start, is tried again from several
+//! starts spread over the bounds ([`STARTS`]) and the best is kept; a parameter ending next
+//! to its bound is set on the bound when that is no worse (status `at_lower_bound` /
+//! `at_upper_bound`); a best result still worse than the start is a failed fit.
 
 use crate::evaluate::{predict_with, Memo};
 use crate::measure::{cv_rmse_pct, Dataset};
@@ -219,8 +226,22 @@ pub struct FitResult {
     pub correlation: Vec<Vec<f64>>,
     /// Residual evaluations used.
     pub evaluations: usize,
-    /// Why the solver stopped.
+    /// Why the solver stopped (in the run kept).
     pub termination: String,
+    /// Solver runs: 1, or more when the first ended stuck at a bound or worse than its start
+    /// and the fit was tried again from spread starts ([`STARTS`]).
+    pub starts: usize,
+}
+
+/// One solver run's end.
+struct Run {
+    config: Config,
+    values: Vec<f64>,
+    cv: f64,
+    /// Why the solver stopped, in words.
+    termination: String,
+    /// The solver stopped without meeting its convergence tolerances.
+    unconverged: bool,
 }
 
 /// Parameters fitted when the user names none: the layer strengths and hardening scale
@@ -240,7 +261,16 @@ pub fn default_free(cfg: &Config) -> Vec<P> {
     }
 }
 
-#[derive(Clone, Copy)]
+/// Fractions of the interval (logistic map) from which a fit stuck at a bound, or worse than
+/// its start, is tried again; for a parameter bounded below only, the distances from the
+/// bound are the start's times 10^(-1), 10 and 100.
+pub const STARTS: [f64; 3] = [0.1, 0.5, 0.9];
+
+/// A fitted value this close to a bound (fraction of the interval, or of the start's distance
+/// from a lower bound) counts as stuck there.
+const NEAR: f64 = 1e-3;
+
+#[derive(Clone, Copy, Debug)]
 enum Map {
     Identity,
     Exp { lo: f64 },
@@ -249,15 +279,35 @@ enum Map {
 
 impl Map {
     /// Exponential map for a lower bound only (or an upper bound three orders of magnitude
-    /// above the start), logistic for a finite interval, identity when unbounded.
-    fn new((lo, hi): (f64, f64), start: f64) -> Self {
+    /// above the start), logistic for a finite interval, identity when unbounded. Returns the
+    /// map and the value the solver starts from: the start itself, or, where the start lies on
+    /// a bound or within [`NEAR`] of it (the map has no slope there, so the solver could not
+    /// move), a point a hundredth of the interval inside (for a lower bound with no finite
+    /// upper bound near: a hundredth of max(|lower bound|, 1) above it).
+    fn new((lo, hi): (f64, f64), start: f64) -> (Self, f64) {
         let far = |h: f64| h.is_infinite() || h >= 1e3 * start.abs().max(lo.abs()).max(1e-12);
         if lo.is_finite() && start > lo && far(hi) {
-            Map::Exp { lo }
+            (Map::Exp { lo }, start)
         } else if lo.is_finite() && hi.is_finite() && hi > lo {
-            Map::Logistic { lo, hi }
+            let w = hi - lo;
+            if start <= lo && w > 1e3 * lo.abs().max(1.0) {
+                // on the lower bound of a very wide interval: a hundredth of the interval
+                // would be far off any value of interest
+                return (Map::Exp { lo }, lo + 1e-2 * lo.abs().max(1.0));
+            }
+            let r = ((start - lo) / w).clamp(0.0, 1.0);
+            let s = if r < NEAR {
+                lo + 1e-2 * w
+            } else if r > 1.0 - NEAR {
+                hi - 1e-2 * w
+            } else {
+                start
+            };
+            (Map::Logistic { lo, hi }, s)
+        } else if lo.is_finite() && start <= lo {
+            (Map::Exp { lo }, lo + 1e-2 * lo.abs().max(1.0))
         } else {
-            Map::Identity
+            (Map::Identity, start)
         }
     }
     fn to_p(self, z: f64) -> f64 {
@@ -277,6 +327,50 @@ impl Map {
             }
         }
     }
+    /// The bound `p` is stuck at, if any: on or beyond it, or within [`NEAR`] of the interval
+    /// (logistic) or of the solver's start's distance `s0 - lo` (exponential).
+    fn stuck(self, p: f64, (lo, hi): (f64, f64), s0: f64) -> Option<Bound> {
+        if p <= lo {
+            return Some(Bound::Lower);
+        }
+        if p >= hi {
+            return Some(Bound::Upper);
+        }
+        match self {
+            Map::Logistic { lo, hi } => {
+                let r = (p - lo) / (hi - lo);
+                if r < NEAR {
+                    Some(Bound::Lower)
+                } else if r > 1.0 - NEAR {
+                    Some(Bound::Upper)
+                } else {
+                    None
+                }
+            }
+            Map::Exp { lo } => (p - lo < NEAR * (s0 - lo)).then_some(Bound::Lower),
+            Map::Identity => None,
+        }
+    }
+    /// The solver's other starts ([`STARTS`]), from the first start `s0`.
+    fn starts(self, s0: f64) -> Vec<f64> {
+        match self {
+            Map::Logistic { lo, hi } => STARTS.iter().map(|f| lo + f * (hi - lo)).collect(),
+            Map::Exp { lo } => [0.1, 10.0, 100.0]
+                .iter()
+                .map(|f| lo + f * (s0 - lo))
+                .collect(),
+            Map::Identity => {
+                let d = s0.abs().max(1.0);
+                vec![s0 - d, s0 + d, s0 + 10.0 * d]
+            }
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Bound {
+    Lower,
+    Upper,
 }
 
 /// Model values for the measured points under a configuration.
@@ -290,7 +384,7 @@ struct Problem<'a> {
     maps: Vec<Map>,
     z: DVector<f64>,
     progress: &'a (dyn Fn(usize) + Sync),
-    evals: std::cell::Cell<usize>,
+    evals: &'a std::cell::Cell<usize>,
     error: std::cell::RefCell<Option<CreepError>>,
     /// The last point evaluated and its residuals: the Jacobian at the current point reuses
     /// them (the solver asks for the residuals at a point before the Jacobian there).
@@ -493,12 +587,11 @@ pub fn fit_generic_with(
         });
     }
     let start: Vec<f64> = free.iter().map(|id| id.get(cfg)).collect();
-    let maps: Vec<Map> = free
+    let (maps, s0): (Vec<Map>, Vec<f64>) = free
         .iter()
         .zip(&start)
         .map(|(id, s)| Map::new(id.bounds(cfg), *s))
-        .collect();
-    let z0 = DVector::from_iterator(free.len(), maps.iter().zip(&start).map(|(m, s)| m.to_z(*s)));
+        .unzip();
     let before = model(cfg)?;
     let cv_before = cv_rmse_pct(meas, &before);
     if !cv_before.is_finite() {
@@ -507,58 +600,157 @@ pub fn fit_generic_with(
             "CV(RMSE) of {source} is not finite before the fit ({cv_before}): the mean measured traction coefficient is {mean}; CV(RMSE) divides by it"
         )));
     }
-    let problem = Problem {
-        base: cfg.clone(),
-        meas: meas.to_vec(),
-        model,
-        free: free.to_vec(),
-        maps: maps.clone(),
-        z: z0,
-        progress,
-        evals: std::cell::Cell::new(0),
-        error: std::cell::RefCell::new(None),
-        last: std::cell::RefCell::new(None),
-    };
+    let evals = std::cell::Cell::new(0);
     let mut lm = LevenbergMarquardt::new().with_patience(30);
     if let Some(t) = opts.tolerance {
         lm = lm.with_ftol(t).with_xtol(t);
     }
-    let (problem, report) = lm.minimize(problem);
-    if let Some(e) = problem.error.borrow_mut().take() {
-        return Err(match e {
-            CreepError::Fit(m) => CreepError::Fit(m),
-            other => CreepError::Fit(other.to_string()),
-        });
+    // one solver run from the values x0 (parameter units)
+    let run = |x0: &[f64]| -> Result<Run> {
+        let z0 = DVector::from_iterator(free.len(), maps.iter().zip(x0).map(|(m, s)| m.to_z(*s)));
+        let problem = Problem {
+            base: cfg.clone(),
+            meas: meas.to_vec(),
+            model,
+            free: free.to_vec(),
+            maps: maps.clone(),
+            z: z0,
+            progress,
+            evals: &evals,
+            error: std::cell::RefCell::new(None),
+            last: std::cell::RefCell::new(None),
+        };
+        let (problem, report) = lm.minimize(problem);
+        if let Some(e) = problem.error.borrow_mut().take() {
+            return Err(match e {
+                CreepError::Fit(m) => CreepError::Fit(m),
+                other => CreepError::Fit(other.to_string()),
+            });
+        }
+        use levenberg_marquardt::TerminationReason as T;
+        match &report.termination {
+            T::User(m) | T::Numerical(m) => {
+                return Err(CreepError::Fit(format!("the solver stopped: {m}")))
+            }
+            T::NoParameters | T::NoResiduals | T::WrongDimensions(_) => {
+                return Err(CreepError::Fit(format!(
+                    "the solver stopped: {:?}",
+                    report.termination
+                )))
+            }
+            _ => {}
+        }
+        let config = problem.config_at(&problem.z)?;
+        let values: Vec<f64> = model(&config).map_err(|e| CreepError::Fit(e.to_string()))?;
+        let cv = cv_rmse_pct(meas, &values);
+        Ok(Run {
+            config,
+            values,
+            cv,
+            termination: format!("{:?}", report.termination),
+            unconverged: matches!(
+                report.termination,
+                T::LostPatience | T::NoImprovementPossible(_)
+            ),
+        })
+    };
+    let stuck_at = |c: &Config| -> Vec<Option<Bound>> {
+        free.iter()
+            .enumerate()
+            .map(|(k, id)| maps[k].stuck(id.get(c), id.bounds(cfg), s0[k]))
+            .collect()
+    };
+    // worse than the start beyond the last digits of the sum of squares
+    let worse = |cv: f64| cv.is_nan() || cv > cv_before * (1.0 + 1e-9);
+    let mut best = run(&s0)?;
+    let mut starts = 1;
+    let stuck = stuck_at(&best.config);
+    let any_stuck = stuck.iter().any(Option::is_some);
+    if any_stuck || worse(best.cv) {
+        // again from starts spread over the bounds: the stuck parameters alone (the others
+        // from where the first run left them), or all of them when the result is worse
+        let grids: Vec<Vec<f64>> = maps.iter().zip(&s0).map(|(m, s)| m.starts(*s)).collect();
+        let from: Vec<f64> = free.iter().map(|id| id.get(&best.config)).collect();
+        let xs: Vec<Vec<f64>> = (0..STARTS.len())
+            .map(|j| {
+                (0..free.len())
+                    .map(|k| {
+                        if !any_stuck || stuck[k].is_some() {
+                            grids[k][j]
+                        } else {
+                            from[k]
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        for x in xs {
+            starts += 1;
+            // a start from which the model fails is passed over: the first run stands
+            if let Ok(r) = run(&x) {
+                if r.cv < best.cv {
+                    best = r;
+                }
+            }
+        }
     }
-    use levenberg_marquardt::TerminationReason as T;
+    // a parameter next to its bound goes onto it when that is no worse
+    for (k, b) in stuck_at(&best.config).into_iter().enumerate() {
+        let Some(b) = b else { continue };
+        let (lo, hi) = free[k].bounds(cfg);
+        let v = if b == Bound::Lower { lo } else { hi };
+        if !v.is_finite() || free[k].get(&best.config) == v {
+            continue;
+        }
+        let mut c = best.config.clone();
+        free[k].set(&mut c, v)?;
+        evals.set(evals.get() + 1);
+        if let Ok(values) = model(&c) {
+            let cv = cv_rmse_pct(meas, &values);
+            if cv <= best.cv {
+                best = Run {
+                    config: c,
+                    values,
+                    cv,
+                    termination: best.termination.clone(),
+                    unconverged: best.unconverged,
+                };
+            }
+        }
+    }
+    if worse(best.cv) {
+        return Err(CreepError::Fit(format!(
+            "it ended worse than it started: CV(RMSE) {:.4} % at the best of {starts} start(s) against {:.4} % at the start values ({}); the configuration is left as it was",
+            best.cv,
+            cv_before,
+            free.iter()
+                .zip(&start)
+                .map(|(id, s)| format!("{} = {s}", id.name(cfg)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    }
     let mut warnings = Vec::new();
-    match report.termination {
-        T::User(m) | T::Numerical(m) => {
-            return Err(CreepError::Fit(format!("the solver stopped: {m}")))
-        }
-        T::NoParameters | T::NoResiduals | T::WrongDimensions(_) => {
-            return Err(CreepError::Fit(format!(
-                "the solver stopped: {:?}",
-                report.termination
-            )))
-        }
-        T::LostPatience | T::NoImprovementPossible(_) => warnings.push(format!(
-            "the solver stopped without meeting its convergence tolerances ({:?}); the result is the best point found",
-            report.termination
-        )),
-        _ => {}
+    if best.unconverged {
+        warnings.push(format!(
+            "the solver stopped without meeting its convergence tolerances ({}); the result is the best point found",
+            best.termination
+        ));
     }
-    let z = problem.z.clone();
-    let fitted = problem.config_at(&z)?;
-    let model_values: Vec<f64> = model(&fitted).map_err(|e| CreepError::Fit(e.to_string()))?;
-    let cv_after = cv_rmse_pct(meas, &model_values);
+    let Run {
+        config: fitted,
+        values: model_values,
+        cv: cv_after,
+        termination,
+        ..
+    } = best;
     if !cv_after.is_finite() {
         return Err(CreepError::Fit(format!(
             "CV(RMSE) after the fit is not finite ({cv_after})"
         )));
     }
     let values: Vec<f64> = free.iter().map(|id| id.get(&fitted)).collect();
-    let (status, stderr, corr, evals) = if opts.skip_uncertainties {
+    let (status, stderr, corr, n_unc) = if opts.skip_uncertainties {
         (Vec::new(), vec![f64::NAN; free.len()], Vec::new(), 0)
     } else {
         uncertainties(&fitted, meas, &model_values, model, free, &start)?
@@ -594,8 +786,9 @@ pub fn fit_generic_with(
         cv_rmse_pct_after: cv_after,
         params,
         correlation: corr,
-        evaluations: problem.evals.get() + evals,
-        termination: format!("{:?}", report.termination),
+        evaluations: evals.get() + n_unc,
+        termination,
+        starts,
     })
 }
 
@@ -751,7 +944,8 @@ mod tests {
             (P::Mu, 0.25),
             (P::PolKA, 0.68),
         ] {
-            let m = Map::new((spec(id).min, spec(id).max), p);
+            let (m, s0) = Map::new((spec(id).min, spec(id).max), p);
+            assert_eq!(s0, p, "{id:?}: a start inside its bounds is kept");
             assert!((m.to_p(m.to_z(p)) - p).abs() < 1e-9 * p.max(1.0), "{id:?}");
             let s = spec(id);
             for z in [-50.0, 0.0, 50.0] {
@@ -761,6 +955,26 @@ mod tests {
                         && (v <= s.max || s.max.is_infinite() || matches!(m, Map::Exp { .. }))
                 );
             }
+        }
+    }
+
+    #[test]
+    fn starts_on_a_bound_begin_inside_where_the_map_has_a_slope() {
+        // on the lower bound of a finite interval: a hundredth of the interval inside
+        let (m, s0) = Map::new((0.0, 20.0), 0.0);
+        assert!(matches!(m, Map::Logistic { .. }) && (s0 - 0.2).abs() < 1e-12);
+        // on the upper bound
+        let (_, s0) = Map::new((-1.0, 3.0), 3.0);
+        assert!((s0 - 2.96).abs() < 1e-12, "{s0}");
+        // on the lower bound of a very wide interval: near the bound, not at 1e7
+        let (m, s0) = Map::new((0.0, 1e9), 0.0);
+        assert!(matches!(m, Map::Exp { .. }) && (s0 - 0.01).abs() < 1e-12);
+        // the slope of the map at the solver's start is not zero
+        for (b, s) in [((0.0, 20.0), 0.0), ((-0.01, 20.0), 0.0), ((0.0, 1e9), 0.0)] {
+            let (m, s0) = Map::new(b, s);
+            let z = m.to_z(s0);
+            let slope = (m.to_p(z + 1e-3) - m.to_p(z)) / 1e-3;
+            assert!(slope > 1e-3, "{b:?}: slope {slope}");
         }
     }
 }

@@ -14,3 +14,5 @@ pub mod evaluate;
 pub mod fit;
 pub mod hpt;
 pub mod measure;
+pub mod noise;
+pub mod search;

@@ -1015,7 +1015,7 @@ fn show_unit(u: &str) -> String {
 
 fn percent_message(name: &str, x: f64) -> String {
     format!(
-        "{x} looks like percent ({:.0} % creepage if dimensionless); the header gives no unit: name the column '{name} [%]' or '{name}_pct', or pass --cx-unit percent (--cx-unit 1 if the values really are dimensionless)",
+        "{x} looks like percent ({:.0} % creepage if dimensionless); the header gives no unit. If the values are percent, name the column '{name} [%]' or '{name}_pct', or pass --cx-unit percent; if they really are dimensionless (e.g. braking toward a locked wheel, c_x down to -1), name the column '{name} [-]' or '{name} [1]', or pass --cx-unit 1",
         100.0 * x.abs()
     )
 }

@@ -309,3 +309,24 @@ fn hidden_effect_of_an_extra_column_is_found_by_residuals_and_a_formula_fixes_it
         r.params[0].stderr
     );
 }
+
+#[test]
+fn transient_only_effects_are_not_counted_as_off_on_steady_rows() {
+    // everything but the transient-only effects on: steady rows leave nothing to add
+    let mut cfg = coarse("dry");
+    cfg.effects.remove(Effect::ElasticUnloading);
+    cfg.effects.remove(Effect::Transient);
+    let data = steady_file(&cfg, &[(5.0, 110.0), (20.0, 110.0)], 0.002);
+    let d = diagnose(&cfg, &data, 2, &|_| {}).unwrap();
+    assert!(d.catalogue_all_on, "{}", d.verdict);
+    assert!(
+        d.verdict.contains("Every catalogue effect"),
+        "{}",
+        d.verdict
+    );
+    // one effect that acts on steady rows off: the note is not given
+    let mut less = cfg.clone();
+    less.effects.remove(Effect::PressureDependence);
+    let d = diagnose(&less, &data, 2, &|_| {}).unwrap();
+    assert!(!d.catalogue_all_on, "{}", d.verdict);
+}

@@ -116,6 +116,32 @@ fn creepage_in_percent_needs_a_unit_and_percent_looking_values_stop() {
 }
 
 #[test]
+fn a_header_unit_settles_the_creepage_unit_of_locked_wheel_rows() {
+    // braking toward a locked wheel: c_x down to -0.9, dimensionless
+    let rows = "-0.9,-0.2,5,110\n-0.6,-0.21,5,110\n0.01,0.3,5,110\n";
+    let e = read_err(&format!("cx,f,v_mps,fn_kN\n{rows}"));
+    assert!(
+        e.contains("looks like percent")
+            && e.contains("'cx [-]'")
+            && e.contains("'cx [1]'")
+            && e.contains("--cx-unit 1"),
+        "{e}"
+    );
+    for h in ["cx [-]", "cx [1]", "cx (-)"] {
+        let d = read(&format!("{h},f,v_mps,fn_kN\n{rows}")).unwrap_or_else(|e| panic!("{h}: {e}"));
+        assert_eq!(d.rows[0].cx, -0.9, "{h}");
+        assert!(d.mapping_text().contains("dimensionless"), "{h}");
+    }
+    // the same rows in percent under a percent header
+    let pct = rows
+        .replace("-0.9,", "-90,")
+        .replace("-0.6,", "-60,")
+        .replace("0.01,", "1,");
+    let d = read(&format!("cx [%],f,v_mps,fn_kN\n{pct}")).unwrap();
+    assert!((d.rows[0].cx + 0.9).abs() < 1e-12 && (d.rows[2].cx - 0.01).abs() < 1e-12);
+}
+
+#[test]
 fn messages_name_the_data_file_line_and_cut_long_cells() {
     let bytes = b"cx,f,v_mps,fn_kN\n0.01,0.3,5,110\n0.02,0.3\xe9,5,110\n";
     let e = ecf_measure::measure::utf8_text(bytes, "m.csv")

@@ -1,0 +1,174 @@
+//! The search of formula-effect forms (issue 26, item 1): on files whose truth has an effect outside the catalogue it proposes the right variable and target and a configuration that fits; on files with nothing missing it proposes nothing.
+use crate::common::{preset, with_grid};
+use creep_core::{Config, Inputs, Model};
+use ecf_measure::diagnose::diagnose;
+use ecf_measure::fit::{fit_params, FreeParam};
+use ecf_measure::measure::{Dataset, Defaults};
+
+fn noise(seed: &mut u64, sd: f64) -> f64 {
+    let mut s = 0.0;
+    for _ in 0..4 {
+        *seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        s += ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
+    }
+    s * sd * 3.0f64.sqrt()
+}
+
+/// Curves of `truth` at the (speed m/s, load kN) points, `n` creepages each, noise of `sd`.
+fn file(truth: &Config, points: &[(f64, f64)], n: i32, sd: f64) -> Dataset {
+    let mut csv = String::from("cx,f,series,v_mps,fn_kN\n");
+    let mut seed = 5;
+    let q = (0.25f64 / 0.0015).powf(1.0 / (n - 1) as f64);
+    for &(v, fkn) in points {
+        let mut m = Model::new(truth).unwrap();
+        for i in 0..n {
+            let cx = 0.0015 * q.powi(i);
+            let f = m
+                .steady(&Inputs {
+                    cx,
+                    v,
+                    fn_n: fkn * 1e3,
+                    ..Inputs::default()
+                })
+                .unwrap()
+                .f;
+            csv.push_str(&format!(
+                "{cx},{},v{v}F{fkn},{v},{fkn}\n",
+                f + noise(&mut seed, sd)
+            ));
+        }
+    }
+    Dataset::from_csv_str(&csv, "forms.csv", &Defaults::default()).unwrap()
+}
+
+/// `cfg` with `target` scaled by `factor` (parameter k = `k`).
+fn with_formula(cfg: &Config, target: &str, factor: &str, k: f64) -> Config {
+    let mut j = cfg.to_json();
+    j["formula_effects"] = serde_json::json!([{"name": "hidden", "target": target,
+        "factor": factor, "params": {"k": {"value": k, "min": -5, "max": 5}}}]);
+    Config::from_json_str(&j.to_string(), "hidden.json").unwrap()
+}
+
+#[test]
+fn a_strength_falling_with_speed_is_found_and_the_proposal_fits() {
+    let cfg = with_grid(preset("dry"), 20, 7);
+    let truth = with_formula(&cfg, "tau_c1", "1 / (1 + k * (v_mps - 5) / 15)", 1.5);
+    let pts = [(5.0, 110.0), (10.0, 110.0), (15.0, 110.0), (20.0, 110.0)];
+    let data = file(&truth, &pts, 12, 0.003);
+    let d = diagnose(&cfg, &data, 2, &|_| {}).unwrap();
+    eprintln!("{}", d.verdict);
+    let s = d
+        .search
+        .as_ref()
+        .expect("not at the noise: the search runs");
+    for f in s.forms.iter().take(6) {
+        eprintln!(
+            "  {} x {}({}) held-out {:.2} % (screen {:.2} %), k = {:.4} ± {:.4}",
+            f.target,
+            f.shape,
+            f.variable,
+            f.heldout_cv_rmse_pct,
+            f.screen_cv_rmse_pct,
+            f.k,
+            f.k_stderr
+        );
+    }
+    eprintln!("{} of {} forms in {:.1} s", s.tried, s.total, s.seconds);
+    assert_eq!(s.tried, s.total);
+    let p = s.proposed.as_ref().expect("a form is proposed");
+    assert_eq!(
+        (p.target.as_str(), p.variable.as_str()),
+        ("tau_c1", "v_mps")
+    );
+    let noise = d.noise.as_ref().unwrap().cv_rmse_pct;
+    assert!(p.heldout_cv_rmse_pct < d.best_heldout_cv_rmse_pct - noise);
+    assert!(p.k.is_finite() && p.k_stderr.is_finite() && p.k_stderr > 0.0);
+    // the reciprocal form is the truth's: it reaches the noise
+    assert_eq!(p.shape, "reciprocal");
+    assert!(
+        p.heldout_cv_rmse_pct < 2.0 * noise,
+        "{} vs {noise}",
+        p.heldout_cv_rmse_pct
+    );
+    // the proposed configuration is read as any configuration and fits as it stands
+    let text = s.proposed_config.as_ref().unwrap().to_string();
+    let prop = Config::from_json_str(&text, "proposed.json").unwrap();
+    let k = FreeParam::resolve(&prop, "form_tau_c1.k").unwrap();
+    let r = fit_params(&prop, &data, &[k], 2, &|_| {}).unwrap();
+    assert!(
+        (r.params[0].value - p.k).abs() < 3.0 * p.k_stderr,
+        "{:?}",
+        r.params
+    );
+    assert!(r.cv_rmse_pct_after <= r.cv_rmse_pct_before * (1.0 + 1e-9));
+    assert!(verdict_names(
+        &d.verdict,
+        "Proposed: tau_c1 x reciprocal in v_mps"
+    ));
+}
+
+fn verdict_names(v: &str, what: &str) -> bool {
+    v.contains(what)
+}
+
+#[test]
+fn a_layer_weakening_with_load_is_found_in_a_load_variable() {
+    let cfg = with_grid(preset("dry"), 20, 7);
+    let truth = with_formula(&cfg, "tau_c2", "exp(-k * (fn_kN - 100) / 40)", 0.4);
+    let pts = [(10.0, 50.0), (10.0, 80.0), (10.0, 110.0), (10.0, 150.0)];
+    let data = file(&truth, &pts, 12, 0.003);
+    let d = diagnose(&cfg, &data, 2, &|_| {}).unwrap();
+    eprintln!("{}", d.verdict);
+    let s = d.search.as_ref().expect("the search runs");
+    for f in s.forms.iter().take(6) {
+        eprintln!(
+            "  {} x {}({}) held-out {:.2} % (screen {:.2} %), k = {:.4} ± {:.4}",
+            f.target,
+            f.shape,
+            f.variable,
+            f.heldout_cv_rmse_pct,
+            f.screen_cv_rmse_pct,
+            f.k,
+            f.k_stderr
+        );
+    }
+    let p = s.proposed.as_ref().expect("a form is proposed");
+    // the load and the maximum pressure (which grows with it) are the same variable here
+    assert!(
+        ["fn_kN", "p_GPa"].contains(&p.variable.as_str()),
+        "{}",
+        p.variable
+    );
+    assert_eq!(p.target, "tau_c2");
+}
+
+#[test]
+fn nothing_missing_nothing_proposed() {
+    // 4 creepages per curve: no noise estimate, so the search runs; the truth is the
+    // configuration: no form may be proposed
+    let cfg = with_grid(preset("dry"), 20, 7);
+    let pts = [
+        (5.0, 90.0),
+        (8.0, 110.0),
+        (12.0, 90.0),
+        (16.0, 110.0),
+        (20.0, 90.0),
+    ];
+    let data = file(&cfg, &pts, 4, 0.003);
+    let d = diagnose(&cfg, &data, 2, &|_| {}).unwrap();
+    eprintln!("{}", d.verdict);
+    assert!(d.noise.is_none());
+    let s = d
+        .search
+        .as_ref()
+        .expect("no noise estimate: the search runs");
+    assert!(s.tried > 0);
+    assert!(
+        s.proposed.is_none() && s.proposed_config.is_none(),
+        "{}",
+        d.verdict
+    );
+    assert!(d.verdict.contains("no form is proposed"), "{}", d.verdict);
+}
