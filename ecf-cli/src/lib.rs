@@ -548,6 +548,58 @@ fn out_row(o: &Outputs) -> String {
         .join(",")
 }
 
+/// `ecf info`: the presets, the effects, the Rust effects linked in, and the tables of
+/// inputs, outputs and parameters.
+fn info(w: &mut Vec<u8>) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "presets: {}",
+        creep_core::config::PRESETS
+            .iter()
+            .map(|p| p.0)
+            .collect::<Vec<_>>()
+            .join(", ")
+    )?;
+    writeln!(w, "\neffects:")?;
+    for e in creep_core::effects::CATALOGUE {
+        writeln!(w, "  {}: {}", e.name, e.description)?;
+    }
+    writeln!(w, "\ncustom effects written in Rust (\"custom_effects\": [{{\"name\": ..., \"params\": {{...}}}}]):")?;
+    for e in creep_core::custom::catalogue() {
+        writeln!(
+            w,
+            "  {} (scales {}): {}",
+            e.name(),
+            e.target().name(),
+            e.description()
+        )?;
+        for (n, d, lo, hi, m) in e.params() {
+            writeln!(w, "    {n}: default {d}, bounds [{lo}, {hi}], {m}")?;
+        }
+    }
+    writeln!(w, "\ninputs (name, unit, default, range, meaning):")?;
+    for s in creep_core::engine::io::INPUTS {
+        writeln!(
+            w,
+            "  {:<22} {:<9} {:>10} [{}, {}]  {}",
+            s.name, s.unit, s.default, s.min, s.max, s.description
+        )?;
+    }
+    writeln!(w, "\noutputs (name, unit, meaning):")?;
+    for s in creep_core::engine::io::OUTPUTS {
+        writeln!(w, "  {:<22} {:<9} {}", s.name, s.unit, s.description)?;
+    }
+    writeln!(w, "\nparameters (name, unit, default, bounds, meaning):")?;
+    for s in creep_core::params::SPECS {
+        writeln!(
+            w,
+            "  {:<22} {:<9} {:>10} [{}, {}]  {} (effect {})",
+            s.name, s.unit, s.default, s.min, s.max, s.description, s.effect
+        )?;
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<(), CreepError> {
     // The whole table is built first and printed only on success: nothing half-written.
     let mut w: Vec<u8> = Vec::new();
@@ -785,58 +837,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                 &mut w,
             )?,
         },
-        Cmd::Info => {
-            writeln!(
-                w,
-                "presets: {}",
-                creep_core::config::PRESETS
-                    .iter()
-                    .map(|p| p.0)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-            .map_err(io)?;
-            writeln!(w, "\neffects:").map_err(io)?;
-            for e in creep_core::effects::CATALOGUE {
-                writeln!(w, "  {}: {}", e.name, e.description).map_err(io)?;
-            }
-            writeln!(w, "\ncustom effects written in Rust (\"custom_effects\": [{{\"name\": ..., \"params\": {{...}}}}]):").map_err(io)?;
-            for e in creep_core::custom::catalogue() {
-                writeln!(
-                    w,
-                    "  {} (scales {}): {}",
-                    e.name(),
-                    e.target().name(),
-                    e.description()
-                )
-                .map_err(io)?;
-                for (n, d, lo, hi, m) in e.params() {
-                    writeln!(w, "    {n}: default {d}, bounds [{lo}, {hi}], {m}").map_err(io)?;
-                }
-            }
-            writeln!(w, "\ninputs (name, unit, default, range, meaning):").map_err(io)?;
-            for s in creep_core::engine::io::INPUTS {
-                writeln!(
-                    w,
-                    "  {:<22} {:<9} {:>10} [{}, {}]  {}",
-                    s.name, s.unit, s.default, s.min, s.max, s.description
-                )
-                .map_err(io)?;
-            }
-            writeln!(w, "\noutputs (name, unit, meaning):").map_err(io)?;
-            for s in creep_core::engine::io::OUTPUTS {
-                writeln!(w, "  {:<22} {:<9} {}", s.name, s.unit, s.description).map_err(io)?;
-            }
-            writeln!(w, "\nparameters (name, unit, default, bounds, meaning):").map_err(io)?;
-            for s in creep_core::params::SPECS {
-                writeln!(
-                    w,
-                    "  {:<22} {:<9} {:>10} [{}, {}]  {} (effect {})",
-                    s.name, s.unit, s.default, s.min, s.max, s.description, s.effect
-                )
-                .map_err(io)?;
-            }
-        }
+        Cmd::Info => info(&mut w).map_err(io)?,
     }
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();
