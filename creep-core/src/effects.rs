@@ -31,8 +31,11 @@ pub enum Effect {
 pub struct EffectInfo {
     /// The effect.
     pub effect: Effect,
-    /// Name in configuration files.
+    /// Name in configuration files, the FMU (`effect_<name>`) and saved states.
     pub name: &'static str,
+    /// Value reference of the FMU's switch `effect_<name>`: written here, never derived from
+    /// a position; a released one never changes (fmu-crate's test `value_references`).
+    pub vr: u32,
     /// One-paragraph physical description.
     pub description: &'static str,
     /// Parameters the effect uses.
@@ -44,48 +47,56 @@ pub const CATALOGUE: &[EffectInfo] = &[
     EffectInfo {
         effect: Effect::Coulomb,
         name: "coulomb",
+        vr: 50,
         description: "Dry Coulomb friction at the bristle tips: a bristle sticks while its stress is below mu times the local normal pressure and slides at that bound otherwise. With elastic wheel and rail (Kalker's simplified theory) this is FASTSIM. The bound follows the elliptic Hertz pressure by default (parabolic on request, as in Kalker's original). It replaces the layer strengths tau_c1, tau_c2 when switched on.",
         params: &[P::Mu],
     },
     EffectInfo {
         effect: Effect::LayerElasticity,
         name: "layer_elasticity",
+        vr: 51,
         description: "The third body layer (oxides, wear particles, fluids, surface asperities, some micrometres thick) is an elastic spring in series with the elastic wheel and rail: the bristle flexibility becomes L_k + L_e (seed Eq. 4.1, 4.21). It lowers the initial slope of the creep curve (regime R1); the seed's L_e_0 is tiny, so the effect shows only when L_e_0 is raised by orders of magnitude.",
         params: &[P::Le0],
     },
     EffectInfo {
         effect: Effect::VocePlasticity,
         name: "voce_plasticity",
+        vr: 52,
         description: "Above the first critical shear stress tau_c1 the layer deforms plastically and hardens after Voce's law towards the second critical shear stress tau_c2, which it never exceeds; the displacement scale of the hardening is L_p (seed Eq. 4.2, 4.19). When a change of pressure or temperature lowers tau_c2 below the bristle's stress, the layer breaks and slides inside itself at tau_c2 (Eq. 4.7). This gives the moderate rise of traction at medium creepage (regime R2).",
         params: &[P::Lp0, P::Tc10, P::Tc20],
     },
     EffectInfo {
         effect: Effect::PressureDependence,
         name: "pressure_dependence",
+        vr: 53,
         description: "The layer behaves like a granular material: the more it is compressed, the more its particles and asperities interlock, so its strengths rise and its compliances fall with the local normal stress, saturating at high pressure: factor 1 - exp(-p X_p) (seed Eq. 4.3, 4.4; high-pressure-torsion tests, Sec. 3.3). It makes the traction coefficient depend on the normal load. Off: factor 1.",
         params: &[P::LeP, P::LpP, P::Tc1P, P::Tc2P],
     },
     EffectInfo {
         effect: Effect::Temperature,
         name: "temperature",
+        vr: 54,
         description: "Plastic work in the layer turns into heat (fraction k_q), split between wheel and rail by the heat partition factor; each bristle's flash temperature follows from its own heat history by the 1/sqrt(t) conduction kernel (seed Eq. 4.22-4.35). Heat softens the layer: strengths fall and compliances rise as exp(-(T - T0) X_T) (Eq. 4.3, 4.4). It causes the maximum of the creep curve, the falling branch at high creepage (R3) and the lower traction at higher speed and load.",
         params: &[P::LeT, P::LpT, P::Tc1T, P::Tc2T, P::T0, P::LambdaW, P::KappaW, P::LambdaR, P::KappaR, P::Kq],
     },
     EffectInfo {
         effect: Effect::Transient,
         name: "transient",
+        vr: 55,
         description: "Bristles are material points carried through the contact at the vehicle speed; their displacement, stress, hardening and heat history persist from one time step to the next, so the force responds to a change of creepage, speed or load within the time 2a/v a bristle needs to cross the contact (seed Sec. 4.5). Off: every step returns the quasi-steady state of the current inputs.",
         params: &[],
     },
     EffectInfo {
         effect: Effect::ElasticUnloading,
         name: "elastic_unloading",
+        vr: 56,
         description: "Unloading rule variant: a plastically deformed bristle whose load decreases unloads elastically along the layer-plus-body stiffness and keeps its hardening (incremental plasticity with radial return and a stored Voce hardening variable), instead of retracing the loading characteristic (the seed-faithful default). It matters when the creepage oscillates or reverses.",
         params: &[],
     },
     EffectInfo {
         effect: Effect::SurfaceTimeFlash,
         name: "surface_time_flash",
+        vr: 57,
         description: "The wheel's flash temperature over the time a point of the wheel surface spends in the contact, x / v_w with v_w = v |1 + c_x|, instead of the layer's time x / v in which the seed evaluates Eq. 4.34. With Blok's partition (Eq. 4.30) this is the same temperature as the rail side's formula with the rail's share of the heat, so it stays finite down to a locked wheel (c_x = -1), where the seed's form sends all heat into the rail and reports no temperature rise at all. Identical to the seed at c_x = 0; the temperature rise differs by sqrt(v / v_w): 12 % lower at c_x = +0.3, 20 % higher at -0.3. For wheel slide and hard braking; off: the seed's form.",
         params: &[],
     },

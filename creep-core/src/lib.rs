@@ -41,6 +41,7 @@ pub use inventory;
 pub use config::AnyModifier;
 pub use config::{Bound, Config, Geometry, Grid, ModelKind};
 pub use effects::Effect;
+pub use engine::io::{InputId, InputSpec, OutputSpec, INPUTS, OUTPUTS};
 pub use engine::{Contact, FieldPoint, Inputs, Outputs};
 pub use error::{CreepError, Result};
 pub use model::Model;

@@ -70,8 +70,11 @@ pub enum P {
 pub struct ParamSpec {
     /// Identifier.
     pub id: P,
-    /// Name used in configuration files, the CLI and the FMU (carries the unit).
+    /// Name used in configuration files, the CLI, the FMU and saved states (carries the unit).
     pub name: &'static str,
+    /// Value reference of the FMU variable: written here, never derived from a position; a
+    /// released one never changes (fmu-crate's test `value_references` pins them).
+    pub vr: u32,
     /// Display unit of the stored value.
     pub unit: &'static str,
     /// Factor from the display unit to SI.
@@ -97,6 +100,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Mu,
         name: "mu",
+        vr: 100,
         unit: "-",
         to_si: 1.0,
         default: 0.25,
@@ -108,6 +112,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::G,
         name: "G_GPa",
+        vr: 101,
         unit: "GPa",
         to_si: 1e9,
         default: 79.3,
@@ -119,6 +124,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Nu,
         name: "nu",
+        vr: 102,
         unit: "-",
         to_si: 1.0,
         default: 0.28,
@@ -130,6 +136,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Le0,
         name: "L_e_0_um_per_GPa",
+        vr: 103,
         unit: "um/GPa",
         to_si: 1e-6 / 1e9,
         default: 0.2522,
@@ -141,6 +148,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::LeP,
         name: "L_e_p_per_GPa",
+        vr: 104,
         unit: "1/GPa",
         to_si: 1e-9,
         default: INF,
@@ -152,6 +160,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::LeT,
         name: "L_e_T_per_C",
+        vr: 105,
         unit: "1/degC",
         to_si: 1.0,
         default: 0.0,
@@ -163,6 +172,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Lp0,
         name: "L_p_0_mm",
+        vr: 106,
         unit: "mm",
         to_si: 1e-3,
         default: 0.25,
@@ -175,6 +185,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::LpP,
         name: "L_p_p_per_GPa",
+        vr: 107,
         unit: "1/GPa",
         to_si: 1e-9,
         default: 1.0,
@@ -186,6 +197,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::LpT,
         name: "L_p_T_per_C",
+        vr: 108,
         unit: "1/degC",
         to_si: 1.0,
         default: 0.0025,
@@ -197,6 +209,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Tc10,
         name: "tau_c1_0_GPa",
+        vr: 109,
         unit: "GPa",
         to_si: 1e9,
         default: 0.3,
@@ -208,6 +221,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Tc1P,
         name: "tau_c1_p_per_GPa",
+        vr: 110,
         unit: "1/GPa",
         to_si: 1e-9,
         default: 1.0,
@@ -219,6 +233,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Tc1T,
         name: "tau_c1_T_per_C",
+        vr: 111,
         unit: "1/degC",
         to_si: 1.0,
         default: 0.0025,
@@ -230,6 +245,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Tc20,
         name: "tau_c2_0_GPa",
+        vr: 112,
         unit: "GPa",
         to_si: 1e9,
         default: 1.1,
@@ -241,6 +257,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Tc2P,
         name: "tau_c2_p_per_GPa",
+        vr: 113,
         unit: "1/GPa",
         to_si: 1e-9,
         default: 1.0,
@@ -252,6 +269,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Tc2T,
         name: "tau_c2_T_per_C",
+        vr: 114,
         unit: "1/degC",
         to_si: 1.0,
         default: 0.0025,
@@ -263,6 +281,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::T0,
         name: "T0_C",
+        vr: 115,
         unit: "degC",
         to_si: 1.0,
         default: 20.0,
@@ -274,6 +293,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::LambdaW,
         name: "lambda_w_W_per_mK",
+        vr: 116,
         unit: "W/(m K)",
         to_si: 1.0,
         default: 50.0,
@@ -285,6 +305,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::KappaW,
         name: "kappa_w_mm2_per_s",
+        vr: 117,
         unit: "mm^2/s",
         to_si: 1e-6,
         default: 14.0,
@@ -296,6 +317,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::LambdaR,
         name: "lambda_r_W_per_mK",
+        vr: 118,
         unit: "W/(m K)",
         to_si: 1.0,
         default: 50.0,
@@ -307,6 +329,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::KappaR,
         name: "kappa_r_mm2_per_s",
+        vr: 119,
         unit: "mm^2/s",
         to_si: 1e-6,
         default: 14.0,
@@ -318,6 +341,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::Kq,
         name: "k_q",
+        vr: 120,
         unit: "-",
         to_si: 1.0,
         default: 1.0,
@@ -329,6 +353,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::PolMu0,
         name: "polach_mu0",
+        vr: 121,
         unit: "-",
         to_si: 1.0,
         default: 0.35,
@@ -340,6 +365,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::PolA,
         name: "polach_A",
+        vr: 122,
         unit: "-",
         to_si: 1.0,
         default: 0.3,
@@ -351,6 +377,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::PolB,
         name: "polach_B_s_per_m",
+        vr: 123,
         unit: "s/m",
         to_si: 1.0,
         default: 0.7,
@@ -362,6 +389,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::PolKA,
         name: "polach_kA",
+        vr: 124,
         unit: "-",
         to_si: 1.0,
         default: 0.68,
@@ -373,6 +401,7 @@ pub const SPECS: &[ParamSpec] = &[
     ParamSpec {
         id: P::PolKS,
         name: "polach_kS",
+        vr: 125,
         unit: "-",
         to_si: 1.0,
         default: 0.14,

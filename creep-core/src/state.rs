@@ -1,24 +1,35 @@
 //! Versioned, explicit byte format of a model's complete hidden state (bristle grid, heat histories) for save/restore.
 //!
-//! Layout (little endian): magic `ECFSTATE`, format version u32, config JSON (u32 length +
-//! UTF-8), time f64, inputs 6 x f64, outputs 13 x f64, flags u8 (bit 0: initialized, bit 1:
-//! rolling backwards; version 2 on, version 1 had only bit 0; for a contact rolling backwards
-//! inputs, outputs and bristles are those of its mirrored frame), then for bristle
-//! models: nx u32, ny u32, kernel size u32, heads ny x u32, phases ny x f64, per bristle
-//! u(2) tau(2) sh temp q as 7 x f64 and regime u8, then the heat accumulators n x K x f64.
+//! Layout (little endian, version 3): magic `ECFSTATE`, format version u32, config JSON (u32
+//! length + UTF-8), time f64, inputs and then outputs each as u32 count + per value its name
+//! (u32 length + UTF-8, the name of [`INPUTS`] or [`OUTPUTS`]) and f64, flags u8 (bit 0:
+//! initialized, bit 1: rolling backwards; for a contact rolling backwards inputs, outputs
+//! and bristles are those of its mirrored frame), then for bristle models: nx u32, ny u32,
+//! kernel size u32, heads ny x u32, phases ny x f64, per bristle u(2) tau(2) sh temp q as
+//! 7 x f64 and regime u8, then the heat accumulators n x K x f64.
+//!
+//! Values are stored by name, so a build with another input or output reads the state: a
+//! value the state lacks keeps its default, a name this build does not know is refused. The
+//! configuration is compared as text; a state saved before a parameter existed holds no
+//! value for it and loads if this build's value is the parameter's default.
+//! Versions 1 and 2 (read, not written) stored 6 inputs and 13 outputs without names: those
+//! with value references 1 to 6 and 10 to 22, in that order (version 1 had only flag bit 0).
 //! Restoring checks the magic, the version, the configuration and every size, so a state
 //! from another configuration or a corrupt buffer is refused with a message, never misread.
 
 use crate::bristle::{BristleState, Regime};
 use crate::bytes::{Reader, Writer};
+use crate::engine::io::{INPUTS, OUTPUTS};
 use crate::engine::{Inputs, Outputs, OwnedRawState};
 use crate::error::{CreepError, Result};
 use crate::model::Model;
+use crate::params::{self, Params};
 use crate::thermal::N_KERNEL;
+use serde_json::Value;
 
 const MAGIC: &[u8; 8] = b"ECFSTATE";
 /// Current version of the byte format.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 
 type W = Writer;
 
@@ -34,47 +45,141 @@ impl R<'_> {
     fn b(&mut self) -> Result<u8> {
         self.0.u8().map_err(CreepError::State)
     }
+    fn s(&mut self) -> Result<String> {
+        self.0.str().map_err(CreepError::State)
+    }
     fn take(&mut self, n: usize) -> Result<&[u8]> {
         self.0.take(n).map_err(CreepError::State)
     }
 }
 
 fn put_inputs(w: &mut W, i: &Inputs) {
-    for x in [i.cx, i.cy, i.spin, i.v, i.fn_n, i.t_bulk] {
-        w.f64(x);
+    w.u32(INPUTS.len() as u32);
+    for s in INPUTS {
+        w.str(s.name);
+        w.f64((s.get)(i));
     }
-}
-fn get_inputs(r: &mut R) -> Result<Inputs> {
-    Ok(Inputs {
-        cx: r.f()?,
-        cy: r.f()?,
-        spin: r.f()?,
-        v: r.f()?,
-        fn_n: r.f()?,
-        t_bulk: r.f()?,
-    })
 }
 fn put_outputs(w: &mut W, o: &Outputs) {
-    for x in o.to_array() {
-        w.f64(x);
+    w.u32(OUTPUTS.len() as u32);
+    for s in OUTPUTS {
+        w.str(s.name);
+        w.f64((s.get)(o));
     }
 }
-fn get_outputs(r: &mut R) -> Result<Outputs> {
-    Ok(Outputs {
-        fx: r.f()?,
-        fy: r.f()?,
-        mz: r.f()?,
-        f: r.f()?,
-        t_max: r.f()?,
-        t_mean: r.f()?,
-        p_fric: r.f()?,
-        frac_elastic: r.f()?,
-        frac_plastic: r.f()?,
-        frac_sliding: r.f()?,
-        a: r.f()?,
-        b: r.f()?,
-        p0: r.f()?,
-    })
+
+/// Reads values stored by name (version 3 on) or, in versions 1 and 2, `legacy` values
+/// without names in the fixed order of the value references `vrs`. `set(name, value)` is
+/// false for a name this build does not know (`what`: "an input"), which is refused.
+fn get_named(
+    r: &mut R,
+    version: u32,
+    legacy: &[(&'static str, u32)],
+    what: &str,
+    mut set: impl FnMut(&str, f64) -> bool,
+) -> Result<()> {
+    if version < 3 {
+        for (name, _) in legacy {
+            let x = r.f()?;
+            if !set(name, x) {
+                return Err(CreepError::State(format!(
+                    "this build has no {what} '{name}'"
+                )));
+            }
+        }
+        return Ok(());
+    }
+    let n = r.u()?;
+    for _ in 0..n {
+        let name = r.s()?;
+        let x = r.f()?;
+        if !set(&name, x) {
+            return Err(CreepError::State(format!(
+                "the state has {what} '{name}' that this build does not know"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Names of the values with value references in `vrs` in ascending order: the layout of
+/// versions 1 and 2 (released value references never change).
+fn legacy_order(
+    specs: impl Iterator<Item = (&'static str, u32)>,
+    vrs: std::ops::RangeInclusive<u32>,
+) -> Vec<(&'static str, u32)> {
+    let mut v: Vec<_> = specs.filter(|(_, vr)| vrs.contains(vr)).collect();
+    v.sort_by_key(|(_, vr)| *vr);
+    v
+}
+
+fn get_inputs(r: &mut R, version: u32) -> Result<Inputs> {
+    let mut i = Inputs::default();
+    let legacy = legacy_order(INPUTS.iter().map(|s| (s.name, s.vr)), 1..=6);
+    get_named(r, version, &legacy, "an input", |name, x| {
+        match INPUTS.iter().find(|s| s.name == name) {
+            Some(s) => {
+                (s.set)(&mut i, x);
+                true
+            }
+            None => false,
+        }
+    })?;
+    Ok(i)
+}
+fn get_outputs(r: &mut R, version: u32) -> Result<Outputs> {
+    let mut o = Outputs::default();
+    let legacy = legacy_order(OUTPUTS.iter().map(|s| (s.name, s.vr)), 10..=22);
+    get_named(r, version, &legacy, "an output", |name, x| {
+        match OUTPUTS.iter().find(|s| s.name == name) {
+            Some(s) => {
+                (s.set)(&mut o, x);
+                true
+            }
+            None => false,
+        }
+    })?;
+    Ok(o)
+}
+
+/// True if the configuration `saved` (JSON text of a state) is `now`'s: equal as text, or
+/// saved before some parameters existed, which hold their defaults in `now`. A parameter of
+/// `saved` that this build does not know is refused with its name.
+fn same_config(saved: &str, now: &str) -> Result<bool> {
+    // compared as text: serde_json's default number parser may differ from the printed
+    // value in the last bit, so a parsed document can differ from an equal configuration
+    if saved == now {
+        return Ok(true);
+    }
+    let (Ok(mut a), Ok(b)) = (
+        serde_json::from_str::<Value>(saved),
+        serde_json::from_str::<Value>(now),
+    ) else {
+        return Ok(false);
+    };
+    let Some(ps) = a.get_mut("params").and_then(Value::as_object_mut) else {
+        return Ok(false);
+    };
+    if let Some(k) = ps.keys().find(|k| params::by_name(k).is_none()) {
+        return Err(CreepError::State(format!(
+            "the state's configuration has the parameter '{k}' that this build does not know"
+        )));
+    }
+    // a parameter the state lacks: its default, printed and parsed as `now` was
+    let defaults = Params::default();
+    for s in params::SPECS {
+        if !ps.contains_key(s.name) {
+            let d = defaults.get(s.id);
+            let text = if d.is_infinite() {
+                format!("\"{}inf\"", if d < 0.0 { "-" } else { "" })
+            } else {
+                serde_json::json!(d).to_string()
+            };
+            let v = serde_json::from_str(&text).unwrap_or(Value::Null);
+            ps.insert(s.name.into(), v);
+        }
+    }
+    Ok(a == b)
 }
 
 impl Model {
@@ -133,7 +238,7 @@ impl Model {
             return Err(CreepError::State("not an ECF state (bad magic)".into()));
         }
         let v = r.u()?;
-        if v != VERSION && v != 1 {
+        if !(1..=VERSION).contains(&v) {
             return Err(CreepError::State(format!(
                 "state format version {v}, this build reads versions 1 to {VERSION}"
             )));
@@ -142,18 +247,15 @@ impl Model {
         let cfg = std::str::from_utf8(r.take(n)?)
             .map_err(|_| CreepError::State("configuration is not UTF-8".into()))?
             .to_string();
-        // compared as text: serde_json's default number parser may differ from the printed
-        // value in the last bit, so a parsed document can differ from an equal configuration
         let now = self.config().to_json().to_string();
-        let same = cfg == now;
-        if !same {
+        if !same_config(&cfg, &now)? {
             return Err(CreepError::State(
                 "the state was saved with a different configuration".into(),
             ));
         }
         let time = r.f()?;
-        let inputs = get_inputs(&mut r)?;
-        let out = get_outputs(&mut r)?;
+        let inputs = get_inputs(&mut r, v)?;
+        let out = get_outputs(&mut r, v)?;
         let flags = r.b()?;
         if flags > 3 || (v == 1 && flags > 1) {
             return Err(CreepError::State(format!("bad flags byte {flags}")));
@@ -258,5 +360,88 @@ impl Model {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+
+    /// The position of the output count: after magic, version, configuration, time, inputs.
+    fn outputs_at(bytes: &[u8]) -> usize {
+        let n = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        let mut at = 16 + n + 8 + 4;
+        for s in INPUTS {
+            at += 4 + s.name.len() + 8;
+        }
+        at
+    }
+
+    #[test]
+    fn outputs_are_stored_by_name() {
+        let cfg = Config::preset("polach").unwrap();
+        let mut m = Model::new(&cfg).unwrap();
+        let out = m
+            .steady(&Inputs {
+                cx: 0.01,
+                ..Inputs::default()
+            })
+            .unwrap();
+        let bytes = m.save_state();
+        let at = outputs_at(&bytes);
+        assert_eq!(
+            u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize,
+            OUTPUTS.len()
+        );
+        // a build with one output less wrote this: the last output keeps its default (0)
+        let last = OUTPUTS[OUTPUTS.len() - 1];
+        let entry = 4 + last.name.len() + 8;
+        let flags_at = bytes.len() - 1;
+        let mut short = bytes[..flags_at - entry].to_vec();
+        short.push(bytes[flags_at]);
+        short[at..at + 4].copy_from_slice(&(OUTPUTS.len() as u32 - 1).to_le_bytes());
+        let mut fresh = Model::new(&cfg).unwrap();
+        fresh
+            .load_state(&short)
+            .expect("a state without the last output loads");
+        assert_ne!((last.get)(&out), 0.0);
+        assert_eq!((last.get)(&fresh.outputs()), 0.0);
+        assert_eq!(fresh.outputs().fx, out.fx);
+        // a name this build does not know is refused with it
+        let mut odd = bytes.clone();
+        let name_at = flags_at - entry + 4;
+        odd[name_at] = b'#';
+        let e = fresh.load_state(&odd).unwrap_err().to_string();
+        assert!(e.contains(&format!("'#{}'", &last.name[1..])), "{e}");
+    }
+
+    #[test]
+    fn a_configuration_saved_before_a_parameter_existed_loads_at_its_default() {
+        let cfg = Config::preset("table4.1").unwrap();
+        let d = Params::default();
+        let s = params::SPECS
+            .iter()
+            .find(|s| cfg.params.get(s.id) == d.get(s.id) && s.default.is_finite())
+            .expect("a parameter at its default");
+        let now = cfg.to_json().to_string();
+        let mut v: Value = serde_json::from_str(&now).unwrap();
+        v["params"].as_object_mut().unwrap().remove(s.name);
+        let saved = v.to_string();
+        assert_ne!(saved, now);
+        assert!(same_config(&saved, &now).unwrap(), "{}", s.name);
+        // not if this build's value is another
+        let mut other = cfg.clone();
+        let x = if s.default < s.max {
+            (s.default + s.max.min(s.default + 1.0)) / 2.0
+        } else {
+            (s.default + s.min) / 2.0
+        };
+        other.params.set(s.id, x).unwrap();
+        assert!(!same_config(&saved, &other.to_json().to_string()).unwrap());
+        // a parameter this build does not know is refused with its name
+        v["params"]["no_such_param"] = serde_json::json!(1.0);
+        let e = same_config(&v.to_string(), &now).unwrap_err().to_string();
+        assert!(e.contains("'no_such_param'"), "{e}");
     }
 }

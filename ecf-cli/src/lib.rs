@@ -83,7 +83,7 @@ enum Cmd {
         #[arg(long, allow_hyphen_values = true)]
         cx: f64,
     },
-    /// Lists presets, effects and parameters with units, defaults and bounds
+    /// Lists presets, effects, inputs, outputs and parameters with units, defaults and bounds
     Info,
     /// Compares a configuration with a measurement file: CV(RMSE) (Eq. 2.9) overall, per group and regime; PNG plots
     Compare {
@@ -533,25 +533,74 @@ fn parse_list(s: &str) -> Result<Vec<f64>, CreepError> {
     s.split(',').map(num).collect()
 }
 
-const OUT_HEADER: &str = "f,Fx_N,Fy_N,Mz_Nm,T_max_C,T_mean_C,P_fric_W,frac_elastic,frac_plastic,frac_sliding,a_mm,b_mm,p0_MPa";
+/// The header of the output columns: creep-core's `OUTPUTS` in their CSV order.
+fn out_header() -> String {
+    creep_core::engine::io::csv_outputs()
+        .iter()
+        .map(|s| s.csv.header)
+        .collect::<Vec<_>>()
+        .join(",")
+}
 
+/// One row of the output columns (see [`out_header`]).
 fn out_row(o: &Outputs) -> String {
-    format!(
-        "{:.8},{:.3},{:.3},{:.5},{:.3},{:.3},{:.3},{:.5},{:.5},{:.5},{:.5},{:.5},{:.3}",
-        o.f,
-        o.fx,
-        o.fy,
-        o.mz,
-        o.t_max,
-        o.t_mean,
-        o.p_fric,
-        o.frac_elastic,
-        o.frac_plastic,
-        o.frac_sliding,
-        o.a * 1e3,
-        o.b * 1e3,
-        o.p0 * 1e-6
-    )
+    creep_core::engine::io::csv_outputs()
+        .iter()
+        .map(|s| format!("{:.*}", s.csv.decimals, (s.get)(o) * s.csv.scale))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// `ecf info`: the presets, the effects, the Rust effects linked in, and the tables of
+/// inputs, outputs and parameters.
+fn info(w: &mut Vec<u8>) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "presets: {}",
+        creep_core::config::PRESETS
+            .iter()
+            .map(|p| p.0)
+            .collect::<Vec<_>>()
+            .join(", ")
+    )?;
+    writeln!(w, "\neffects:")?;
+    for e in creep_core::effects::CATALOGUE {
+        writeln!(w, "  {}: {}", e.name, e.description)?;
+    }
+    writeln!(w, "\ncustom effects written in Rust (\"custom_effects\": [{{\"name\": ..., \"params\": {{...}}}}]):")?;
+    for e in creep_core::custom::catalogue() {
+        writeln!(
+            w,
+            "  {} (scales {}): {}",
+            e.name(),
+            e.target().name(),
+            e.description()
+        )?;
+        for (n, d, lo, hi, m) in e.params() {
+            writeln!(w, "    {n}: default {d}, bounds [{lo}, {hi}], {m}")?;
+        }
+    }
+    writeln!(w, "\ninputs (name, unit, default, range, meaning):")?;
+    for s in creep_core::engine::io::INPUTS {
+        writeln!(
+            w,
+            "  {:<22} {:<9} {:>10} [{}, {}]  {}",
+            s.name, s.unit, s.default, s.min, s.max, s.description
+        )?;
+    }
+    writeln!(w, "\noutputs (name, unit, meaning):")?;
+    for s in creep_core::engine::io::OUTPUTS {
+        writeln!(w, "  {:<22} {:<9} {}", s.name, s.unit, s.description)?;
+    }
+    writeln!(w, "\nparameters (name, unit, default, bounds, meaning):")?;
+    for s in creep_core::params::SPECS {
+        writeln!(
+            w,
+            "  {:<22} {:<9} {:>10} [{}, {}]  {} (effect {})",
+            s.name, s.unit, s.default, s.min, s.max, s.description, s.effect
+        )?;
+    }
+    Ok(())
 }
 
 fn run(cli: Cli) -> Result<(), CreepError> {
@@ -571,7 +620,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             let cfg = m.config()?;
             let list = parse_list(&cx)?;
             let mut model = m.model(&cfg)?;
-            writeln!(w, "cx,{OUT_HEADER}").map_err(io)?;
+            writeln!(w, "cx,{}", out_header()).map_err(io)?;
             for c in list {
                 let o = model.steady(&m.inputs(c)).map_err(|e| rename(e, "--cx"))?;
                 writeln!(w, "{c},{}", out_row(&o)).map_err(io)?;
@@ -659,7 +708,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             let o = model
                 .steady(&m.inputs(cx_from))
                 .map_err(|e| rename(e, "--cx-from"))?;
-            writeln!(w, "t_s,cx,{OUT_HEADER}").map_err(io)?;
+            writeln!(w, "t_s,cx,{}", out_header()).map_err(io)?;
             writeln!(w, "0,{cx_from},{}", out_row(&o)).map_err(io)?;
             let n = (duration_ms / dt_ms).round() as usize;
             let dt = dt_ms * 1e-3;
@@ -697,7 +746,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             let mut model = m.model(&cfg)?;
             tr.apply(&mut model);
             let o = model.steady(&m.inputs(cm)).map_err(|e| rename(e, "--cm"))?;
-            writeln!(w, "t_s,cx,{OUT_HEADER}").map_err(io)?;
+            writeln!(w, "t_s,cx,{}", out_header()).map_err(io)?;
             writeln!(w, "0,{cm},{}", out_row(&o)).map_err(io)?;
             let dt = 1.0 / (freq_hz * steps_per_cycle as f64);
             for k in 1..=(cycles * steps_per_cycle) {
@@ -791,45 +840,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                 &mut w,
             )?,
         },
-        Cmd::Info => {
-            writeln!(
-                w,
-                "presets: {}",
-                creep_core::config::PRESETS
-                    .iter()
-                    .map(|p| p.0)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-            .map_err(io)?;
-            writeln!(w, "\neffects:").map_err(io)?;
-            for e in creep_core::effects::CATALOGUE {
-                writeln!(w, "  {}: {}", e.name, e.description).map_err(io)?;
-            }
-            writeln!(w, "\ncustom effects written in Rust (\"custom_effects\": [{{\"name\": ..., \"params\": {{...}}}}]):").map_err(io)?;
-            for e in creep_core::custom::catalogue() {
-                writeln!(
-                    w,
-                    "  {} (scales {}): {}",
-                    e.name(),
-                    e.target().name(),
-                    e.description()
-                )
-                .map_err(io)?;
-                for (n, d, lo, hi, m) in e.params() {
-                    writeln!(w, "    {n}: default {d}, bounds [{lo}, {hi}], {m}").map_err(io)?;
-                }
-            }
-            writeln!(w, "\nparameters (name, unit, default, bounds, meaning):").map_err(io)?;
-            for s in creep_core::params::SPECS {
-                writeln!(
-                    w,
-                    "  {:<22} {:<9} {:>10} [{}, {}]  {} (effect {})",
-                    s.name, s.unit, s.default, s.min, s.max, s.description, s.effect
-                )
-                .map_err(io)?;
-            }
-        }
+        Cmd::Info => info(&mut w).map_err(io)?,
     }
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();

@@ -128,6 +128,9 @@ unsafe fn emit(
         let text = escape_percent(&m.text);
         // The message is formatted here; '%' is escaped, so the importer's printf-style
         // formatting sees no conversion specifiers and reads no variadic arguments.
+        // SAFETY: `log` is the importer's fmi2CallbackLogger, which FMI 2.0 (sec. 2.1.5,
+        // fmi2CallbackFunctions) makes callable with the componentEnvironment given with it
+        // and NUL-terminated strings; the three strings are CStrings alive during the call.
         unsafe {
             log(
                 env,
@@ -143,7 +146,8 @@ unsafe fn emit(
 fn flush(comp: &mut Component) {
     let logs = comp.inst.take_logs();
     for m in &logs {
-        // SAFETY: logger and env are what the importer gave to fmi2Instantiate.
+        // SAFETY: logger and env are those the importer gave to fmi2Instantiate; it keeps them
+        // valid until fmi2FreeInstance (FMI 2.0 sec. 2.1.5, fmi2CallbackFunctions).
         unsafe { emit(comp.logger, comp.env, &comp.name, m) };
     }
 }
@@ -167,7 +171,8 @@ unsafe fn with(c: f::fmi2Component, func: &str, body: impl FnOnce(&mut Component
         return ERROR;
     };
     // SAFETY: the address is that of a live Box<Component> (in the registry until
-    // fmi2FreeInstance); an instance is used by one thread at a time (FMI rule).
+    // fmi2FreeInstance); the importer calls one instance from one thread at a time (an FMI
+    // 2.0 rule).
     let comp = unsafe { &mut *(ptr as *mut Component) };
     let st = match catch_unwind(AssertUnwindSafe(|| body(&mut *comp))) {
         Ok(s) => s,
@@ -184,7 +189,8 @@ unsafe fn cstr<'a>(p: *const c_char) -> Option<&'a str> {
     if p.is_null() {
         None
     } else {
-        // SAFETY: non-null strings from the importer are NUL-terminated.
+        // SAFETY: an fmi2String from the importer is a NUL-terminated C string (FMI 2.0
+        // sec. 2.1.2, fmi2String = const char*); null is handled above.
         unsafe { CStr::from_ptr(p) }.to_str().ok()
     }
 }
@@ -196,7 +202,9 @@ unsafe fn slice<'a, T>(p: *const T, n: usize) -> Option<&'a [T]> {
     } else if p.is_null() {
         None
     } else {
-        // SAFETY: the importer passes arrays of n elements.
+        // SAFETY: FMI 2.0 passes an array with its element count (vr[nvr], value[nvr],
+        // categories[nCategories], serializedState[size]; sec. 2.1.5-2.1.8), which callers pass
+        // as n; null is handled above.
         Some(unsafe { std::slice::from_raw_parts(p, n) })
     }
 }
@@ -207,7 +215,9 @@ unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Option<&'a mut [T]> {
     } else if p.is_null() {
         None
     } else {
-        // SAFETY: the importer passes arrays of n elements.
+        // SAFETY: FMI 2.0 passes a writable array with its element count (value[nvr] of
+        // fmi2Get*, serializedState[size]; sec. 2.1.7, 2.1.8), which callers pass as n (at most
+        // that count); null is handled above.
         Some(unsafe { std::slice::from_raw_parts_mut(p, n) })
     }
 }
@@ -240,11 +250,14 @@ pub unsafe extern "C" fn fmi2Instantiate(
     loggingOn: f::fmi2Boolean,
 ) -> f::fmi2Component {
     let r = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: a non-null callback struct is the importer's, valid for this call.
+        // SAFETY: a non-null fmi2CallbackFunctions is the importer's, valid during
+        // fmi2Instantiate (FMI 2.0 sec. 2.1.5); null is handled.
         let (logger, env) = match unsafe { functions.as_ref() } {
             Some(cb) => (cb.logger, cb.componentEnvironment),
             None => (None, std::ptr::null_mut()),
         };
+        // SAFETY: fmi2Instantiate receives instanceName as a NUL-terminated string or null
+        // (FMI 2.0 sec. 2.1.5); `cstr` checks null.
         let name = unsafe { cstr(instanceName) }
             .unwrap_or(MODEL_IDENTIFIER)
             .to_string();
@@ -255,6 +268,8 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 category: "logStatusError",
                 text,
             };
+            // SAFETY: logger and env come from this fmi2Instantiate call's
+            // fmi2CallbackFunctions, valid while it runs (FMI 2.0 sec. 2.1.5).
             unsafe { emit(logger, env, &cname, &m) };
             std::ptr::null_mut()
         };
@@ -262,10 +277,14 @@ pub unsafe extern "C" fn fmi2Instantiate(
             return fail(format!("fmi2Instantiate: {MODEL_IDENTIFIER} supports Co-Simulation only (fmuType = {fmuType})"));
         }
         let want = guid();
+        // SAFETY: fmuGUID is a NUL-terminated string or null (FMI 2.0 sec. 2.1.5); `cstr`
+        // checks null.
         match unsafe { cstr(fmuGUID) } {
             Some(g) if g == want => {}
             g => return fail(format!("fmi2Instantiate: GUID {g:?} does not match this binary's {want} (modelDescription.xml and binary from different builds)")),
         }
+        // SAFETY: fmuResourceLocation is a NUL-terminated URI or null (FMI 2.0 sec. 2.1.5);
+        // `cstr` checks null.
         let res = unsafe { cstr(fmuResourceLocation) };
         let inst = Instance::new(&name, res, loggingOn != 0);
         let mut comp = Box::new(Component {
@@ -308,7 +327,8 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: f::fmi2Component) {
         drop(states);
         match ptr {
             // SAFETY: the address came from Box::into_raw in fmi2Instantiate and was just
-            // removed from the registry, so it is freed exactly once.
+            // removed from the registry, so it is freed exactly once; fmi2FreeInstance is the
+            // instance's last call (FMI 2.0 sec. 2.1.5), and later calls with `c` are refused.
             Some(p) => drop(unsafe { Box::from_raw(p as *mut Component) }),
             None => unknown_handle("fmi2FreeInstance", "fmi2Component", h),
         }
@@ -322,6 +342,9 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     nCategories: usize,
     categories: *const f::fmi2String,
 ) -> S {
+    // SAFETY: `c` as in `with`; fmi2SetDebugLogging passes categories as an array of
+    // nCategories NUL-terminated strings (FMI 2.0 sec. 2.1.5): `slice` checks the array for
+    // null, `cstr` each string.
     unsafe {
         with(c, "fmi2SetDebugLogging", |comp| {
             let Some(cats) = slice(categories, nCategories) else {
@@ -348,6 +371,9 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
     _stopTimeDefined: f::fmi2Boolean,
     _stopTime: f::fmi2Real,
 ) -> S {
+    // SAFETY: `with` dereferences `c` only if it is a live instance of the registry, and the
+    // importer calls one instance from one thread at a time (an FMI 2.0 rule); no other
+    // pointer is read.
     unsafe {
         with(c, "fmi2SetupExperiment", |comp| {
             comp.inst.setup_experiment(startTime)
@@ -357,6 +383,9 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: f::fmi2Component) -> S {
+    // SAFETY: `with` dereferences `c` only if it is a live instance of the registry, and the
+    // importer calls one instance from one thread at a time (an FMI 2.0 rule); no other
+    // pointer is read.
     unsafe {
         with(c, "fmi2EnterInitializationMode", |comp| {
             comp.inst.enter_initialization()
@@ -366,6 +395,9 @@ pub unsafe extern "C" fn fmi2EnterInitializationMode(c: f::fmi2Component) -> S {
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: f::fmi2Component) -> S {
+    // SAFETY: `with` dereferences `c` only if it is a live instance of the registry, and the
+    // importer calls one instance from one thread at a time (an FMI 2.0 rule); no other
+    // pointer is read.
     unsafe {
         with(c, "fmi2ExitInitializationMode", |comp| {
             comp.inst.exit_initialization()
@@ -375,11 +407,17 @@ pub unsafe extern "C" fn fmi2ExitInitializationMode(c: f::fmi2Component) -> S {
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Terminate(c: f::fmi2Component) -> S {
+    // SAFETY: `with` dereferences `c` only if it is a live instance of the registry, and the
+    // importer calls one instance from one thread at a time (an FMI 2.0 rule); no other
+    // pointer is read.
     unsafe { with(c, "fmi2Terminate", |comp| comp.inst.terminate()) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Reset(c: f::fmi2Component) -> S {
+    // SAFETY: `with` dereferences `c` only if it is a live instance of the registry, and the
+    // importer calls one instance from one thread at a time (an FMI 2.0 rule); no other
+    // pointer is read.
     unsafe { with(c, "fmi2Reset", |comp| comp.inst.reset()) }
 }
 
@@ -396,6 +434,9 @@ macro_rules! getter {
             value: *mut $t,
         ) -> S {
             const F: &str = stringify!($fname);
+            // SAFETY: `c` as in `with`; fmi2Get{Real,Integer,Boolean} pass vr as an array of
+            // nvr value references and value as a writable array of nvr elements (FMI 2.0 sec.
+            // 2.1.7); `slice`/`slice_mut` check both for null.
             unsafe {
                 with(c, F, |comp| {
                     let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
@@ -424,6 +465,9 @@ macro_rules! setter {
             value: *const $t,
         ) -> S {
             const F: &str = stringify!($fname);
+            // SAFETY: `c` as in `with`; fmi2Set{Real,Integer,Boolean} pass vr and value as
+            // arrays of nvr elements (FMI 2.0 sec. 2.1.7); `slice` checks both for null; the
+            // values are copied before the call returns.
             unsafe {
                 with(c, F, |comp| {
                     let (Some(vrs), Some(vals)) = (slice(vr, nvr), slice(value, nvr)) else {
@@ -459,6 +503,10 @@ pub unsafe extern "C" fn fmi2GetString(
     value: *mut f::fmi2String,
 ) -> S {
     const F: &str = "fmi2GetString";
+    // SAFETY: `c` as in `with`; vr and value are arrays of nvr elements, value writable (FMI
+    // 2.0 sec. 2.1.7), null-checked by `slice`/`slice_mut`; the returned strings live in
+    // `comp.strings` until the next call on this instance, as sec. 2.1.7 requires of
+    // fmi2GetString.
     unsafe {
         with(c, F, |comp| {
             let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
@@ -489,6 +537,9 @@ pub unsafe extern "C" fn fmi2SetString(
     value: *const f::fmi2String,
 ) -> S {
     const F: &str = "fmi2SetString";
+    // SAFETY: `c` as in `with`; vr and value are arrays of nvr elements and each value a NUL-
+    // terminated string (FMI 2.0 sec. 2.1.7), null-checked by `slice` and `cstr`; the strings
+    // are copied before the call returns (the importer may free them after it).
     unsafe {
         with(c, F, |comp| {
             let (Some(vrs), Some(vals)) = (slice(vr, nvr), slice(value, nvr)) else {
@@ -550,6 +601,8 @@ fn store_state(
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: f::fmi2Component, FMUstate: *mut f::fmi2FMUstate) -> S {
     const F: &str = "fmi2GetFMUstate";
+    // SAFETY: `c` as in `with`; FMUstate points to the importer's fmi2FMUstate variable, which
+    // fmi2GetFMUstate writes (FMI 2.0 sec. 2.1.8); `as_mut` checks null.
     unsafe {
         with(c, F, |comp| {
             let Some(slot) = FMUstate.as_mut() else {
@@ -566,6 +619,8 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: f::fmi2Component, FMUstate: *mut f::
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: f::fmi2Component, FMUstate: f::fmi2FMUstate) -> S {
     const F: &str = "fmi2SetFMUstate";
+    // SAFETY: `c` as in `with`; FMUstate is a handle only looked up in the registry, never
+    // dereferenced.
     unsafe {
         with(c, F, |comp| {
             let h = state_handle(FMUstate);
@@ -587,6 +642,9 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(
     FMUstate: *mut f::fmi2FMUstate,
 ) -> S {
     const F: &str = "fmi2FreeFMUstate";
+    // SAFETY: `c` as in `with`; FMUstate points to the importer's fmi2FMUstate variable, which
+    // fmi2FreeFMUstate sets to null (FMI 2.0 sec. 2.1.8); `as_mut` checks null; the state
+    // itself is a registry handle.
     unsafe {
         with(c, F, |comp| {
             let Some(slot) = FMUstate.as_mut() else {
@@ -624,6 +682,8 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     size: *mut usize,
 ) -> S {
     const F: &str = "fmi2SerializedFMUstateSize";
+    // SAFETY: `c` as in `with`; size points to a writable size_t (FMI 2.0 sec. 2.1.8), null-
+    // checked by `as_mut`; FMUstate is a registry handle.
     unsafe {
         with(c, F, |comp| {
             let Some(size) = size.as_mut() else {
@@ -649,6 +709,8 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     size: usize,
 ) -> S {
     const F: &str = "fmi2SerializeFMUstate";
+    // SAFETY: `c` as in `with`; serializedState is a writable buffer of `size` bytes (FMI 2.0
+    // sec. 2.1.8): only bytes.len() <= size of them are written, after a null check.
     unsafe {
         with(c, F, |comp| {
             let h = state_handle(FMUstate);
@@ -682,6 +744,9 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     FMUstate: *mut f::fmi2FMUstate,
 ) -> S {
     const F: &str = "fmi2DeSerializeFMUstate";
+    // SAFETY: `c` as in `with`; serializedState is an array of `size` bytes and FMUstate a
+    // writable fmi2FMUstate variable (FMI 2.0 sec. 2.1.8), null-checked by `slice` and
+    // `as_mut`; the bytes are copied.
     unsafe {
         with(c, F, |comp| {
             let (Some(data), Some(slot)) =
@@ -708,6 +773,9 @@ pub unsafe extern "C" fn fmi2DoStep(
     communicationStepSize: f::fmi2Real,
     _noSetFMUStatePriorToCurrentPoint: f::fmi2Boolean,
 ) -> S {
+    // SAFETY: `with` dereferences `c` only if it is a live instance of the registry, and the
+    // importer calls one instance from one thread at a time (an FMI 2.0 rule); no other
+    // pointer is read.
     unsafe {
         with(c, "fmi2DoStep", |comp| {
             comp.inst
@@ -718,6 +786,9 @@ pub unsafe extern "C" fn fmi2DoStep(
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2CancelStep(c: f::fmi2Component) -> S {
+    // SAFETY: `with` dereferences `c` only if it is a live instance of the registry, and the
+    // importer calls one instance from one thread at a time (an FMI 2.0 rule); no other
+    // pointer is read.
     unsafe {
         with(c, "fmi2CancelStep", |comp| {
             comp.inst.error("fmi2CancelStep: not supported (fmi2DoStep runs synchronously and never returns fmi2Pending)".into())
@@ -732,6 +803,8 @@ pub unsafe extern "C" fn fmi2GetStatus(
     value: *mut f::fmi2Status,
 ) -> S {
     const F: &str = "fmi2GetStatus";
+    // SAFETY: `c` as in `with`; value points to a writable fmi2Status (FMI 2.0 sec. 4.2.3,
+    // fmi2GetStatus), null-checked by `as_mut`.
     unsafe {
         with(c, F, |comp| {
             let Some(v) = value.as_mut() else {
@@ -759,6 +832,8 @@ pub unsafe extern "C" fn fmi2GetRealStatus(
     value: *mut f::fmi2Real,
 ) -> S {
     const F: &str = "fmi2GetRealStatus";
+    // SAFETY: `c` as in `with`; value points to a writable fmi2Real (FMI 2.0 sec. 4.2.3),
+    // null-checked by `as_mut`.
     unsafe {
         with(c, F, |comp| {
             let Some(v) = value.as_mut() else {
@@ -780,6 +855,9 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     _s: f::fmi2StatusKind,
     _value: *mut f::fmi2Integer,
 ) -> S {
+    // SAFETY: `with` dereferences `c` only if it is a live instance of the registry, and the
+    // importer calls one instance from one thread at a time (an FMI 2.0 rule); no other
+    // pointer is read.
     unsafe { with(c, "fmi2GetIntegerStatus", |_| Status::Discard) }
 }
 
@@ -790,6 +868,8 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
     value: *mut f::fmi2Boolean,
 ) -> S {
     const F: &str = "fmi2GetBooleanStatus";
+    // SAFETY: `c` as in `with`; value points to a writable fmi2Boolean (FMI 2.0 sec. 4.2.3),
+    // null-checked by `as_mut`.
     unsafe {
         with(c, F, |comp| {
             let Some(v) = value.as_mut() else {
@@ -811,6 +891,9 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     _s: f::fmi2StatusKind,
     _value: *mut f::fmi2String,
 ) -> S {
+    // SAFETY: `with` dereferences `c` only if it is a live instance of the registry, and the
+    // importer calls one instance from one thread at a time (an FMI 2.0 rule); no other
+    // pointer is read.
     unsafe { with(c, "fmi2GetStringStatus", |_| Status::Discard) }
 }
 
@@ -831,6 +914,9 @@ macro_rules! unsupported {
             #[no_mangle]
             pub unsafe extern "C" fn $name(c: f::fmi2Component, $($arg: $ty),*) -> S {
                 const F: &str = stringify!($name);
+                // SAFETY: `with` dereferences `c` only if it is a live instance of the
+                // registry, and the importer calls one instance from one thread at a time (an
+                // FMI 2.0 rule); no other pointer is read.
                 unsafe { with(c, F, |comp| unsupported(comp, F, $why)) }
             }
         )*
@@ -966,6 +1052,7 @@ mod tests {
             strings: Vec::new(),
         });
         let c = register(comp);
+        // SAFETY: `c` is the handle `register` just returned; this test is its only user.
         let st = unsafe { with(c, "fmi2DoStep", |_| panic!("boom 100%")) };
         assert_eq!(st, ERROR);
         let seen = SEEN.lock().map(|v| v.clone()).unwrap_or_default();
@@ -975,9 +1062,14 @@ mod tests {
             "{seen:?}"
         );
         // the instance is in the error state; reset brings it back
+        // SAFETY (this and the next three calls): `c` is live until fmi2FreeInstance, the last
+        // call; one thread.
         assert_eq!(unsafe { fmi2DoStep(c, 0.0, 1e-3, 1) }, ERROR);
+        // SAFETY: as above.
         assert_eq!(unsafe { fmi2Reset(c) }, OK);
+        // SAFETY: as above.
         assert_eq!(unsafe { fmi2EnterInitializationMode(c) }, OK);
+        // SAFETY: as above; `c` is not used after it.
         unsafe { fmi2FreeInstance(c) };
     }
 

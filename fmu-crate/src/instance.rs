@@ -4,6 +4,7 @@ use crate::settings::{extras_for, Settings};
 use crate::vars::{
     self, core_inputs, Causality, Geo, In, Kind, Out, Slot, Start, Value, Var, N_INPUTS,
 };
+use creep_core::engine::io::InputId;
 use creep_core::{Config, Model, Outputs};
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -817,7 +818,7 @@ impl Instance {
                 if let Err(e) = core_inputs(&cand).validate() {
                     // the FMU takes FN <= 0 as lift-off: say so beside the core's range
                     let why = match i {
-                        In::Fn => format!(
+                        In::Core(InputId::Fn) => format!(
                             "FN = {x} N is above the largest accepted normal force, 1e8 N (FN <= 0 is accepted: lift-off, all forces 0)"
                         ),
                         _ => e.to_string(),
@@ -848,13 +849,13 @@ impl Instance {
                 self.inputs[i.index()] = x;
                 self.model_current = false;
                 return match i {
-                    In::Cx | In::Cy if x.abs() > 1.0 => self.warn(format!(
+                    In::Core(InputId::Cx | InputId::Cy) if x.abs() > 1.0 => self.warn(format!(
                         "{func}: {} = {x} ({:.0} %): |{}| > 1 is beyond the range of rolling contact (the wheel slips more than it rolls); computed anyway",
                         v.name,
                         100.0 * x,
                         v.name
                     )),
-                    In::Fn if x < 0.0 => self.warn(format!(
+                    In::Core(InputId::Fn) if x < 0.0 => self.warn(format!(
                         "{func}: FN = {x} N < 0: the wheel has lifted off; treated as FN = 0 (all forces zero)"
                     )),
                     _ => Status::Ok,

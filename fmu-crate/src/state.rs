@@ -1,21 +1,26 @@
 //! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
 //!
-//! Layout (version 4): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
+//! Layout (version 5): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
 //! name as in modelDescription.xml, f64 value), settings (model, model_set, preset,
-//! config_file, columns, set parameters as (u32 registry index, f64), set effects as (u8
-//! catalogue index, u8), nx, ny as u32 (0 = not set), i32 geometry, u32 count + per geometry
-//! parameter (name, u8 present, f64)), u8 + configuration (u8 model, u32 effect bits, u32
-//! count + f64 per parameter, u8 bound, u32 nx, u32 ny, u8 geometry kind + 3 × f64, preset
-//! name, u8 + (if formula or Rust effects) the configuration as JSON and, per formula then
-//! Rust effect, u32 count + f64 parameter values), u8 + u32 length + the bytes of
-//! `creep_core::Model::save_state` (the whole bristle grid and heat histories), and (since
-//! version 4) u8 the mode the state was taken in (0 Instantiated, 1 InitializationMode,
-//! 2 StepComplete, 3 Terminated), which fmi2SetFMUstate restores; states of versions 2 and 3
-//! are in StepComplete when they hold a model, Instantiated otherwise.
-//! Inputs and geometry values are stored by name, so that a build with another input reads
-//! the state (an input it lacks keeps its start value; a name the reading build does not know
-//! is refused). Version 2 (read, not written) stored the 10 inputs and 5 geometry values
-//! without names, in the fixed orders `V2_INPUTS`, `V2_GEO`.
+//! config_file, columns, set parameters as u32 count and (name, f64) each, set effects as
+//! u32 count and (name, u8) each, nx, ny as u32 (0 = not set), i32 geometry, u32 count + per geometry
+//! parameter (name, u8 present, f64)), u8 + configuration (u8 model, u32 count + names of the
+//! effects on, u32 count + (name, f64) per parameter, u8 bound, u32 nx, u32 ny, u8 geometry
+//! kind + 3 × f64, preset name, u8 + (if formula or Rust effects) the configuration as JSON
+//! and, per formula then Rust effect, u32 count + f64 parameter values), u8 + u32 length +
+//! the bytes of `creep_core::Model::save_state` (the whole bristle grid and heat histories),
+//! and u8 the mode the state was taken in (0 Instantiated, 1 InitializationMode,
+//! 2 StepComplete, 3 Terminated), which fmi2SetFMUstate restores.
+//! Inputs, parameters, effects and geometry values are stored by name (those of creep-core's
+//! tables), so that a build with another input, parameter or effect reads the state: a value
+//! it lacks keeps its default (an effect: off in the configuration, not set in the settings);
+//! a name the reading build does not know is refused with that name.
+//! Older versions (read, not written): version 4 stored parameters as (u32, f64) and effects
+//! as (u8, u8) by index, the configuration's effects as u32 bits and its parameters as a
+//! count (26) and values, each index k the parameter with value reference 100 + k, the
+//! effect with value reference 50 + k; versions 2 and 3 had no mode byte (a state holding a
+//! model is in StepComplete, else Instantiated); version 2 stored the 10 inputs and 5
+//! geometry values without names, in the fixed orders `V2_INPUTS`, `V2_GEO`.
 //! Strings are u32 length + UTF-8. Nothing follows the last field.
 
 use crate::instance::{validate_snapshot, Phase, Snapshot};
@@ -29,7 +34,7 @@ use creep_core::{AnyModifier, Bound, Config, Geometry, Grid, Model, ModelKind, M
 /// Magic bytes at the start of a serialized FMU state.
 pub const MAGIC: &[u8; 8] = b"ECFFMUST";
 /// Format version written by this build.
-pub const VERSION: u32 = 4;
+pub const VERSION: u32 = 5;
 
 /// The inputs of format version 2, in its fixed order (version 3 stores each with its name).
 const V2_INPUTS: [&str; 10] = [
@@ -41,21 +46,30 @@ const V2_GEO: [&str; 5] = ["a_ref", "b_ref", "FN_ref", "Rx", "Ry"];
 type W = Writer;
 type R<'a> = Reader<'a>;
 
-fn effect_index(e: Effect) -> u8 {
+/// Effect of a value reference (versions up to 4 stored effects by `vr - 50`).
+fn effect_of_vr(vr: u32) -> Option<Effect> {
     effects::CATALOGUE
         .iter()
-        .position(|i| i.effect == e)
-        .unwrap_or(0) as u8
+        .find(|i| i.vr == vr)
+        .map(|i| i.effect)
 }
 
-/// Effect of a catalogue index.
-fn effect_of(i: u8) -> Option<Effect> {
-    effects::CATALOGUE.get(i as usize).map(|i| i.effect)
+/// Parameter of a value reference (versions up to 4 stored parameters by `vr - 100`).
+fn param_of_vr(vr: u32) -> Option<P> {
+    params::SPECS.iter().find(|s| s.vr == vr).map(|s| s.id)
 }
 
-/// Parameter of a registry index.
-fn param_of(i: u32) -> Option<P> {
-    params::SPECS.get(i as usize).map(|s| s.id)
+/// Effect of a name; a name this build does not know is refused with it.
+fn effect_named(name: &str) -> Result<Effect, String> {
+    effects::by_name(name)
+        .map_err(|_| format!("the state has the effect '{name}' that this build does not know"))
+}
+
+/// Parameter of a name; a name this build does not know is refused with it.
+fn param_named(name: &str) -> Result<P, String> {
+    params::by_name(name).ok_or_else(|| {
+        format!("the state has the parameter '{name}' that this build does not know")
+    })
 }
 
 fn put_config(w: &mut W, c: &Config) {
@@ -64,9 +78,14 @@ fn put_config(w: &mut W, c: &Config) {
         ModelKind::Fastsim => 1,
         ModelKind::Polach => 2,
     });
-    w.u32(c.effects.bits());
+    let on = c.effects.to_vec();
+    w.u32(on.len() as u32);
+    for e in on {
+        w.str(effects::info(e).name);
+    }
     w.u32(params::SPECS.len() as u32);
     for s in params::SPECS {
+        w.str(s.name);
         w.f64(c.params.get(s.id));
     }
     w.u8(match c.bound {
@@ -104,29 +123,18 @@ fn put_config(w: &mut W, c: &Config) {
     }
 }
 
-fn get_config(r: &mut R) -> Result<Config, String> {
+fn get_config(r: &mut R, version: u32) -> Result<Config, String> {
     let model = match r.u8()? {
         0 => ModelKind::Ecf,
         1 => ModelKind::Fastsim,
         2 => ModelKind::Polach,
         b => return Err(format!("bad model byte {b}")),
     };
-    let bits = r.u32()?;
-    let effects = EffectSet::from_bits(bits);
-    if effects.bits() != bits {
-        return Err(format!("bad effect bits {bits:#x}"));
-    }
-    let n = r.u32()? as usize;
-    if n != params::SPECS.len() {
-        return Err(format!(
-            "{n} parameters, this build has {}",
-            params::SPECS.len()
-        ));
-    }
-    let mut p = Params::default();
-    for s in params::SPECS {
-        p.set(s.id, r.f64()?).map_err(|e| e.to_string())?;
-    }
+    let (effects, p) = if version >= 5 {
+        get_config_named(r)?
+    } else {
+        get_config_v4(r)?
+    };
     let bound = match r.u8()? {
         0 => Bound::Elliptic,
         1 => Bound::Parabolic,
@@ -189,6 +197,44 @@ fn get_config(r: &mut R) -> Result<Config, String> {
     })
 }
 
+/// The effects and parameters of a configuration, stored by name (version 5 on).
+fn get_config_named(r: &mut R) -> Result<(EffectSet, Params), String> {
+    let mut effects = EffectSet::empty();
+    for _ in 0..r.u32()? {
+        effects.insert(effect_named(&r.str()?)?);
+    }
+    let mut p = Params::default();
+    for _ in 0..r.u32()? {
+        let id = param_named(&r.str()?)?;
+        p.set(id, r.f64()?).map_err(|e| e.to_string())?;
+    }
+    Ok((effects, p))
+}
+
+/// The effects and parameters of a configuration of versions up to 4: effect bits (bit k the
+/// effect with value reference 50 + k) and the 26 parameters of value references 100 to 125.
+fn get_config_v4(r: &mut R) -> Result<(EffectSet, Params), String> {
+    let bits = r.u32()?;
+    let mut effects = EffectSet::empty();
+    for k in 0..32 {
+        if bits & (1 << k) != 0 {
+            effects
+                .insert(effect_of_vr(50 + k).ok_or_else(|| format!("bad effect bits {bits:#x}"))?);
+        }
+    }
+    let n = r.u32()?;
+    if n != 26 {
+        return Err(format!("{n} parameters, format version 4 has 26"));
+    }
+    let mut p = Params::default();
+    for k in 0..n {
+        let id = param_of_vr(100 + k)
+            .ok_or_else(|| format!("this build has no parameter {k} of version 4"))?;
+        p.set(id, r.f64()?).map_err(|e| e.to_string())?;
+    }
+    Ok((effects, p))
+}
+
 /// Serializes a snapshot.
 pub fn serialize(s: &Snapshot) -> Vec<u8> {
     let mut w = W::new();
@@ -209,12 +255,12 @@ pub fn serialize(s: &Snapshot) -> Vec<u8> {
     w.str(&st.columns);
     w.u32(st.params.len() as u32);
     for (p, x) in &st.params {
-        w.u32(*p as u32);
+        w.str(params::spec(*p).name);
         w.f64(*x);
     }
     w.u32(st.effects.len() as u32);
     for (e, on) in &st.effects {
-        w.u8(effect_index(*e));
+        w.str(effects::info(*e).name);
         w.u8(*on as u8);
     }
     w.u32(st.nx.unwrap_or(0) as u32);
@@ -325,14 +371,22 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     };
     let n = r.u32()?;
     for _ in 0..n {
-        let i = r.u32()?;
-        let p = param_of(i).ok_or_else(|| format!("bad parameter index {i}"))?;
+        let p = if v >= 5 {
+            param_named(&r.str()?)?
+        } else {
+            let i = r.u32()?;
+            param_of_vr(100 + i).ok_or_else(|| format!("bad parameter index {i}"))?
+        };
         st.params.insert(p, r.f64()?);
     }
     let n = r.u32()?;
     for _ in 0..n {
-        let i = r.u8()?;
-        let e = effect_of(i).ok_or_else(|| format!("bad effect index {i}"))?;
+        let e = if v >= 5 {
+            effect_named(&r.str()?)?
+        } else {
+            let i = r.u8()?;
+            effect_of_vr(50 + i as u32).ok_or_else(|| format!("bad effect index {i}"))?
+        };
         st.effects.insert(e, r.bool()?);
     }
     let nx = r.u32()? as usize;
@@ -355,7 +409,7 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
         },
     )?;
     let cfg = if r.bool()? {
-        Some(get_config(&mut r)?)
+        Some(get_config(&mut r, v)?)
     } else {
         None
     };
@@ -508,5 +562,57 @@ mod tests {
         }
         let e = deserialize(&odd).unwrap_err();
         assert!(e.contains("area fractions"), "{e}");
+    }
+
+    #[test]
+    fn parameters_and_effects_are_stored_by_name() {
+        let mut i = Instance::new("t", None, false);
+        let vr = |n: &str| {
+            crate::vars::table()
+                .iter()
+                .find(|v| v.name == n)
+                .unwrap()
+                .vr
+        };
+        assert_eq!(i.set_real(vr("tau_c1_0_GPa"), 0.35), Status::Ok);
+        assert_eq!(
+            i.set_boolean(vr("effect_elastic_unloading"), true),
+            Status::Ok
+        );
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        let snap = i.get_state();
+        let bytes = serialize(&snap);
+        let entry = |name: &str| {
+            let mut w = W::new();
+            w.str(name);
+            w.into_inner()
+        };
+        let find = |b: &[u8], name: &str| {
+            let e = entry(name);
+            b.windows(e.len()).position(|w| w == e.as_slice())
+        };
+        // a parameter or effect this build does not know is refused with its name
+        for name in ["tau_c1_0_GPa", "elastic_unloading"] {
+            let at = find(&bytes, name).expect(name);
+            let mut odd = bytes.clone();
+            odd[at + 4] = b'#';
+            let e = deserialize(&odd).unwrap_err();
+            assert!(e.contains(&format!("'#{}'", &name[1..])), "{e}");
+        }
+        // a configuration of a build without the last parameter: it keeps its default
+        let last = params::SPECS[params::SPECS.len() - 1];
+        let first = find(&bytes, params::SPECS[0].name).expect("the first parameter");
+        let at = find(&bytes, last.name).expect("the last parameter");
+        let mut short = bytes[..at].to_vec();
+        short.extend_from_slice(&bytes[at + entry(last.name).len() + 8..]);
+        let n = u32::from_le_bytes(bytes[first - 4..first].try_into().unwrap());
+        assert_eq!(n as usize, params::SPECS.len());
+        short[first - 4..first].copy_from_slice(&(n - 1).to_le_bytes());
+        let s = deserialize(&short).expect("a state without the last parameter loads");
+        let cfg = s.cfg.expect("a configuration");
+        assert_eq!(cfg.params.get(last.id), last.default);
+        assert_eq!(cfg.params.get(P::Tc10), 0.35);
+        assert!(cfg.effects.has(Effect::ElasticUnloading));
     }
 }

@@ -1,25 +1,24 @@
 //! The one table of FMU variables: name, value reference, type, causality, unit, start, description; drives get/set, the state layout and the XML.
 //!
-//! Each variable is declared once. The contact's inputs, outputs and geometry parameters
-//! are the lines of `contact_variables!` below (the list is the order of modelDescription.xml
-//! and of the serialized state); the material, friction and thermal parameters and the
-//! effect switches come from creep-core's registries (`params::SPECS`, `effects::CATALOGUE`);
-//! the remaining parameters (geometry, nx, ny, threads, scheme, model, preset, config_file,
-//! columns) are one [`Var`] each in [`table`].
+//! Each variable is declared once. The contact's inputs and outputs, the material, friction
+//! and thermal parameters and the effect switches are rows of creep-core's tables
+//! (`engine::io::INPUTS`, `engine::io::OUTPUTS`, `params::SPECS`, `effects::CATALOGUE`), each
+//! with its fixed value reference; the auxiliary inputs and the geometry parameters are
+//! declared below (`In::Aux`, `geometry_variables!`); the remaining parameters (geometry
+//! mode, nx, ny, threads, scheme, model, preset, config_file, columns) are one [`Var`] each
+//! in [`table`].
 //!
 //! Adding a variable:
-//! * an output: one line in `outputs` (name, value reference, unit, the field of
-//!   `creep_core::Outputs`, description); get, XML and ModelStructure follow;
-//! * an input: one line in `inputs` (the field of `creep_core::Inputs`); get/set, validation,
-//!   the core inputs and the state layout follow (the serialized state names its inputs and
-//!   geometry values, so states of earlier builds still load: an input they lack keeps its
-//!   start value);
-//! * a material parameter or an effect: its entry in creep-core's registry, nothing here;
+//! * an output, an input, a material parameter or an effect: its row in creep-core's table,
+//!   nothing here (get/set, validation, the XML and both state formats follow; states store
+//!   values by name, so states of earlier builds still load);
+//! * a geometry parameter: a line in `geometry_variables!`;
 //! * another parameter: a [`Var`] in [`table`] with a new [`Slot`], and what it does in
 //!   `settings.rs` (check, apply, get, and its use in `Settings::resolve`).
 
 use creep_core::config::DEFAULT_GEOMETRY;
 use creep_core::effects::{self, Effect};
+use creep_core::engine::io::{input_spec, InputId, OutputSpec, INPUTS, N_OUTPUTS, OUTPUTS};
 use creep_core::params::{self, P};
 use creep_core::{Config, Geometry, Inputs};
 
@@ -59,130 +58,147 @@ pub enum Causality {
     Output,
 }
 
-/// Generates, from the one declaration of the contact's variables below, the enums [`In`],
-/// [`Out`] and [`Geo`] with each variable's name, value reference, unit and description, the
-/// input layout (the order of an instance's input values and of the serialized state), the
-/// mapping to the core's [`Inputs`] and [`creep_core::Outputs`], and their rows of [`table`].
-macro_rules! contact_variables {
-    (
-        inputs {
-            $( $(#[$in_doc:meta])* $in:ident = $in_vr:literal, $in_name:literal, $in_unit:expr, core $in_core:ident, $in_desc:literal; )*
-        }
-        aux inputs $n_aux:literal from $aux_vr:literal;
-        outputs {
-            $( $(#[$out_doc:meta])* $out:ident = $out_vr:literal, $out_name:literal, $out_unit:expr, core $out_core:ident, $out_desc:literal; )*
-        }
-        geometry {
-            $( $(#[$geo_doc:meta])* $geo:ident = $geo_vr:literal, $geo_name:literal, $geo_unit:literal, mode $geo_mode:literal, start $geo_start:expr, $geo_desc:literal; )*
-        }
-    ) => {
-        /// One of the inputs of a contact; [`In::ALL`] is their order (the layout of the input
-        /// values of an instance and of the serialized state).
-        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-        pub enum In {
-            $( $(#[$in_doc])* $in, )*
-            /// Auxiliary input 1..[`N_AUX`] (index 0..): a data column of formula or custom effects.
-            Aux(usize),
-        }
+/// One of the inputs of a contact: a row of creep-core's `INPUTS` or an auxiliary input;
+/// [`In::ALL`] is their order (the layout of the input values of an instance).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum In {
+    /// An input of the core model (its row of creep-core's `INPUTS`).
+    Core(InputId),
+    /// Auxiliary input 1..[`N_AUX`] (index 0..): a data column of formula or custom effects.
+    Aux(usize),
+}
 
-        #[derive(Clone, Copy)]
-        enum CoreIn {
-            $( $in, )*
-        }
+/// Number of auxiliary inputs.
+pub const N_AUX: usize = 4;
+/// Number of contact inputs (those of the core's [`Inputs`]); the auxiliary inputs follow.
+pub const N_CORE_INPUTS: usize = INPUTS.len();
+/// Number of inputs (the contact inputs and the auxiliary inputs).
+pub const N_INPUTS: usize = N_CORE_INPUTS + N_AUX;
+/// Value reference of `aux1` (the others follow).
+pub const VR_AUX0: u32 = 90;
 
-        /// Number of auxiliary inputs.
-        pub const N_AUX: usize = $n_aux;
-        /// Number of contact inputs (those of the core's [`Inputs`]); the auxiliary inputs follow.
-        pub const N_CORE_INPUTS: usize = [$(CoreIn::$in),*].len();
-        /// Number of inputs (the contact inputs and the auxiliary inputs).
-        pub const N_INPUTS: usize = N_CORE_INPUTS + N_AUX;
-        /// Value reference of `aux1` (the others follow).
-        pub const VR_AUX0: u32 = $aux_vr;
-
-        impl In {
-            /// Every input, in layout order.
-            pub const ALL: [In; N_INPUTS] = {
-                let core = [$(In::$in),*];
-                let mut all = [In::Aux(0); N_INPUTS];
-                let mut i = 0;
-                while i < N_INPUTS {
-                    all[i] = if i < N_CORE_INPUTS { core[i] } else { In::Aux(i - N_CORE_INPUTS) };
-                    i += 1;
-                }
-                all
+impl In {
+    /// Every input, in layout order.
+    pub const ALL: [In; N_INPUTS] = {
+        let mut all = [In::Aux(0); N_INPUTS];
+        let mut i = 0;
+        while i < N_INPUTS {
+            all[i] = if i < N_CORE_INPUTS {
+                In::Core(INPUTS[i].id)
+            } else {
+                In::Aux(i - N_CORE_INPUTS)
             };
-
-            /// Position in the input values (instance and serialized state).
-            pub const fn index(self) -> usize {
-                match self {
-                    $( In::$in => CoreIn::$in as usize, )*
-                    In::Aux(k) => N_CORE_INPUTS + k,
-                }
-            }
-
-            /// Name in modelDescription.xml.
-            pub fn name(self) -> String {
-                match self {
-                    $( In::$in => $in_name.to_string(), )*
-                    In::Aux(k) => format!("aux{}", k + 1),
-                }
-            }
-
-            /// Start value (modelDescription.xml): the value of an input that a serialized
-            /// state of an earlier build does not hold.
-            pub fn start(self) -> f64 {
-                match self {
-                    $( In::$in => Inputs::default().$in_core, )*
-                    In::Aux(_) => 0.0,
-                }
-            }
-
-            fn var(self) -> Var {
-                let (vr, unit, start, description) = match self {
-                    $( In::$in => ($in_vr, $in_unit, Inputs::default().$in_core, $in_desc.to_string()), )*
-                    In::Aux(k) => (VR_AUX0 + k as u32, None, 0.0, aux_description(k)),
-                };
-                real(self.name(), vr, Causality::Input, unit, Start::Real(start), description, Slot::Input(self))
-            }
+            i += 1;
         }
+        all
+    };
 
-        /// The core inputs of FMU input values, as they are (see [`core_inputs`]).
-        fn core_fields(x: &[f64; N_INPUTS]) -> Inputs {
-            Inputs { $( $in_core: x[In::$in.index()], )* }
+    /// Position in the input values of an instance (creep-core's `INPUTS` is indexed by
+    /// [`InputId`]; the auxiliary inputs follow).
+    pub const fn index(self) -> usize {
+        match self {
+            In::Core(id) => id as usize,
+            In::Aux(k) => N_CORE_INPUTS + k,
         }
+    }
 
-        /// One of the outputs of a contact.
-        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-        pub enum Out {
-            $( $(#[$out_doc])* $out, )*
+    /// Name in modelDescription.xml.
+    pub fn name(self) -> String {
+        match self {
+            In::Core(id) => input_spec(id).name.to_string(),
+            In::Aux(k) => format!("aux{}", k + 1),
         }
+    }
 
-        impl Out {
-            /// Every output, in the order of the table.
-            pub const ALL: &'static [Out] = &[$(Out::$out),*];
-
-            /// The value of this output in a core [`creep_core::Outputs`].
-            pub fn of(self, o: &creep_core::Outputs) -> f64 {
-                match self {
-                    $( Out::$out => o.$out_core, )*
-                }
-            }
-
-            /// Name in modelDescription.xml.
-            pub fn name(self) -> &'static str {
-                match self {
-                    $( Out::$out => $out_name, )*
-                }
-            }
-
-            fn var(self) -> Var {
-                let (vr, unit, description) = match self {
-                    $( Out::$out => ($out_vr, $out_unit, $out_desc), )*
-                };
-                real(self.name().into(), vr, Causality::Output, unit, Start::None, description.into(), Slot::Output(self))
-            }
+    /// Start value (modelDescription.xml): the value of an input that a serialized state of
+    /// an earlier build does not hold.
+    pub fn start(self) -> f64 {
+        match self {
+            In::Core(id) => input_spec(id).default,
+            In::Aux(_) => 0.0,
         }
+    }
 
+    fn var(self) -> Var {
+        let (vr, unit, description) = match self {
+            In::Core(id) => {
+                let s = input_spec(id);
+                (s.vr, unit_of(s.unit), s.description.to_string())
+            }
+            In::Aux(k) => (VR_AUX0 + k as u32, None, aux_description(k)),
+        };
+        real(
+            self.name(),
+            vr,
+            Causality::Input,
+            unit,
+            Start::Real(self.start()),
+            description,
+            Slot::Input(self),
+        )
+    }
+}
+
+/// The core inputs of FMU input values, as they are (see [`core_inputs`]).
+fn core_fields(x: &[f64; N_INPUTS]) -> Inputs {
+    let mut i = Inputs::default();
+    for s in INPUTS {
+        (s.set)(&mut i, x[In::Core(s.id).index()]);
+    }
+    i
+}
+
+/// One of the outputs of a contact: a row of creep-core's `OUTPUTS` (by its position there).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Out(usize);
+
+impl Out {
+    /// Every output, in the order of the table.
+    pub const ALL: [Out; N_OUTPUTS] = {
+        let mut all = [Out(0); N_OUTPUTS];
+        let mut i = 0;
+        while i < N_OUTPUTS {
+            all[i] = Out(i);
+            i += 1;
+        }
+        all
+    };
+
+    /// Its row of creep-core's `OUTPUTS`.
+    pub fn spec(self) -> &'static OutputSpec {
+        &OUTPUTS[self.0]
+    }
+
+    /// The value of this output in a core [`creep_core::Outputs`].
+    pub fn of(self, o: &creep_core::Outputs) -> f64 {
+        (self.spec().get)(o)
+    }
+
+    /// Name in modelDescription.xml.
+    pub fn name(self) -> &'static str {
+        self.spec().name
+    }
+
+    fn var(self) -> Var {
+        let s = self.spec();
+        real(
+            s.name.into(),
+            s.vr,
+            Causality::Output,
+            unit_of(s.unit),
+            Start::None,
+            s.description.into(),
+            Slot::Output(self),
+        )
+    }
+}
+
+/// Generates, from the one declaration of the geometry parameters below, the enum [`Geo`]
+/// with each parameter's name, value reference, unit, mode, start and description.
+macro_rules! geometry_variables {
+    (
+        $( $(#[$geo_doc:meta])* $geo:ident = $geo_vr:literal, $geo_name:literal, $geo_unit:literal, mode $geo_mode:literal, start $geo_start:expr, $geo_desc:literal; )*
+    ) => {
         /// Geometry parameters (SI); [`Geo::ALL`] is their order (of `Settings::geo` and of
         /// the serialized state).
         #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -235,65 +251,19 @@ macro_rules! contact_variables {
     };
 }
 
-// The contact's variables, each declared once (like config.h of the Reference FMUs): the
-// order here is the order of modelDescription.xml and of the serialized state; value
-// references are fixed. Start values of the inputs are those of `creep_core::Inputs::default`.
-contact_variables! {
-    inputs {
-        /// Longitudinal creepage.
-        Cx = 1, "cx", None, core cx, "longitudinal creepage c_x = v_x/|v| (slip velocity of the wheel against the rail along x, the rolling direction, over the rolling speed); > 0 traction (driven wheel turns faster than it rolls), < 0 braking; Fx (force on the wheel) has the sign of cx";
-        /// Lateral creepage.
-        Cy = 2, "cy", None, core cy, "lateral creepage c_y = v_y/|v| (lateral slip velocity of the wheel, y = z x x with z the contact normal into the wheel); Fy has its sign (Kalker's eta with the force on the wheel, i.e. Kalker's traction negated)";
-        /// Spin creepage.
-        Spin = 3, "spin", Some("1/m"), core spin, "spin creepage omega_z/|v| (relative rotation rate of the wheel about the contact normal z, into the wheel); spin > 0 gives Fy > 0 and Mz > 0 at small creepage";
-        /// Rolling speed.
-        V = 4, "v", Some("m/s"), core v, "rolling (vehicle) speed; < 0 rolls backwards (the mirror image; the bristles stay in the contact when the sign changes); 0 is standstill (no advection, no heat)";
-        /// Normal force.
-        Fn = 5, "FN", Some("N"), core fn_n, "normal force on the contact; <= 0 is lift-off (all forces zero)";
-        /// Bulk temperature.
-        TBulk = 6, "T_bulk", Some("degC"), core t_bulk, "bulk (ambient) temperature of wheel and rail";
-    }
-    aux inputs 4 from 90;
-    outputs {
-        /// Longitudinal creep force.
-        Fx = 10, "Fx", Some("N"), core fx, "longitudinal creep force on the wheel (positive with c_x: traction)";
-        /// Lateral creep force.
-        Fy = 11, "Fy", Some("N"), core fy, "lateral creep force (positive with c_y)";
-        /// Spin moment.
-        Mz = 12, "Mz", Some("N.m"), core mz, "spin moment about the contact normal, int (x tau_y - y tau_x) dA";
-        /// Traction coefficient.
-        F = 13, "f", None, core f, "traction coefficient Fx/FN (0 at lift-off)";
-        /// Maximum temperature.
-        TMax = 14, "T_max", Some("degC"), core t_max, "maximum flash temperature in the contact";
-        /// Mean temperature.
-        TMean = 15, "T_mean", Some("degC"), core t_mean, "area-weighted mean temperature in the contact";
-        /// Frictional power.
-        PFric = 16, "P_fric", Some("W"), core p_fric, "frictional power dissipated in the contact (both bodies)";
-        /// Elastic area fraction.
-        FracElastic = 17, "frac_elastic", None, core frac_elastic, "area fraction of elastic (adhering) bristles";
-        /// Plastic area fraction.
-        FracPlastic = 18, "frac_plastic", None, core frac_plastic, "area fraction of plastically hardening bristles";
-        /// Sliding area fraction.
-        FracSliding = 19, "frac_sliding", None, core frac_sliding, "area fraction of sliding bristles";
-        /// Semi-axis a.
-        A = 20, "a", Some("m"), core a, "contact semi-axis in rolling direction";
-        /// Semi-axis b.
-        B = 21, "b", Some("m"), core b, "lateral contact semi-axis (line contact: half width)";
-        /// Peak pressure.
-        P0 = 22, "p0", Some("Pa"), core p0, "maximum Hertz pressure";
-    }
-    geometry {
-        /// Semi-axis a at the reference load.
-        ARef = 30, "a_ref", "m", mode 1, start semi_axes_start()[0], "semi-axis in rolling direction at FN_ref (geometry = 1); scales with (FN/FN_ref)^(1/3)";
-        /// Semi-axis b at the reference load.
-        BRef = 31, "b_ref", "m", mode 1, start semi_axes_start()[1], "lateral semi-axis at FN_ref (geometry = 1)";
-        /// Reference load.
-        FnRef = 32, "FN_ref", "N", mode 1, start semi_axes_start()[2], "reference normal force of a_ref, b_ref (geometry = 1)";
-        /// Equivalent radius of curvature in rolling direction.
-        Rx = 33, "Rx", "m", mode 2, start RX_START, "equivalent radius of curvature in rolling direction, Hertz (geometry = 2)";
-        /// Equivalent lateral radius of curvature.
-        Ry = 34, "Ry", "m", mode 2, start RY_START, "equivalent lateral radius of curvature, Hertz (geometry = 2)";
-    }
+// The geometry parameters, each declared once: the order here is the order of
+// modelDescription.xml; value references are fixed.
+geometry_variables! {
+    /// Semi-axis a at the reference load.
+    ARef = 30, "a_ref", "m", mode 1, start semi_axes_start()[0], "semi-axis in rolling direction at FN_ref (geometry = 1); scales with (FN/FN_ref)^(1/3)";
+    /// Semi-axis b at the reference load.
+    BRef = 31, "b_ref", "m", mode 1, start semi_axes_start()[1], "lateral semi-axis at FN_ref (geometry = 1)";
+    /// Reference load.
+    FnRef = 32, "FN_ref", "N", mode 1, start semi_axes_start()[2], "reference normal force of a_ref, b_ref (geometry = 1)";
+    /// Equivalent radius of curvature in rolling direction.
+    Rx = 33, "Rx", "m", mode 2, start RX_START, "equivalent radius of curvature in rolling direction, Hertz (geometry = 2)";
+    /// Equivalent lateral radius of curvature.
+    Ry = 34, "Ry", "m", mode 2, start RY_START, "equivalent lateral radius of curvature, Hertz (geometry = 2)";
 }
 
 /// The core inputs of FMU input values (FN <= 0 is lift-off: F_N = 0).
@@ -449,9 +419,6 @@ pub struct Var {
     /// What the variable reads and writes.
     pub slot: Slot,
 }
-
-/// Value reference of the first material parameter (the others follow in `SPECS` order).
-pub const VR_PARAM0: u32 = 100;
 
 /// Unit definitions: name, SI exponents (kg, m, s, K) and factor/offset to SI.
 pub struct UnitDef {
@@ -671,7 +638,7 @@ pub fn table() -> Vec<Var> {
         max: Some(1.0),
         slot: Slot::Scheme,
     });
-    for (i, info) in effects::CATALOGUE.iter().enumerate() {
+    for info in effects::CATALOGUE {
         let first = info
             .description
             .split(". ")
@@ -689,7 +656,7 @@ pub fn table() -> Vec<Var> {
         let description = format!("{description}; {UNSET}");
         v.push(Var {
             name: format!("effect_{}", info.name),
-            vr: 50 + i as u32,
+            vr: info.vr,
             kind: Kind::Boolean,
             causality: Parameter,
             unit: None,
@@ -720,10 +687,10 @@ pub fn table() -> Vec<Var> {
             slot,
         });
     }
-    for (i, s) in params::SPECS.iter().enumerate() {
+    for s in params::SPECS {
         v.push(Var {
             name: s.name.into(),
-            vr: VR_PARAM0 + i as u32,
+            vr: s.vr,
             kind: Kind::Real,
             causality: Parameter,
             unit: unit_of(s.unit),

@@ -43,7 +43,7 @@ const INPUTS: Inputs = Inputs {
     t_bulk: 20.0,
 };
 
-fn fmu_outputs(f: &mut Fmu) -> [f64; 13] {
+fn fmu_outputs(f: &mut Fmu) -> [f64; N_OUTPUTS] {
     f.inputs(INPUTS.cx, INPUTS.cy, INPUTS.spin, INPUTS.v, INPUTS.fn_n);
     assert_eq!(f.init(), OK, "{:?}", f.messages());
     f.outputs()

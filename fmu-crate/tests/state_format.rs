@@ -2,7 +2,7 @@
 
 use ecf_contact::instance::{Instance, Status};
 use ecf_contact::state;
-use ecf_contact::vars::{self, Out};
+use ecf_contact::vars;
 
 /// A state after 8 steps of 1 ms (grid 6 x 3, mu = 0.3, geometry = 2 with Rx = 0.5,
 /// columns = humidity=aux2), from fmi2SerializeFMUstate of that build.
@@ -78,6 +78,23 @@ const EXPECTED: [[u64; 13]; 4] = [
     ],
 ];
 
+/// The outputs of that build, in the order of [`EXPECTED`].
+const OUTPUTS_V2: [&str; 13] = [
+    "Fx",
+    "Fy",
+    "Mz",
+    "f",
+    "T_max",
+    "T_mean",
+    "P_fric",
+    "frac_elastic",
+    "frac_plastic",
+    "frac_sliding",
+    "a",
+    "b",
+    "p0",
+];
+
 fn vr(name: &str) -> u32 {
     vars::table()
         .iter()
@@ -108,22 +125,20 @@ fn a_version_2_state_of_an_earlier_build_loads_and_continues_as_it_did() {
     assert_eq!(i.enter_initialization(), Status::Ok);
     assert_eq!(i.exit_initialization(), Status::Ok);
     assert_eq!(i.set_state(&snap), Status::Ok);
-    assert_eq!(Out::ALL.len(), EXPECTED[0].len());
     for (k, want) in EXPECTED.iter().enumerate() {
         assert_eq!(i.set_real(vr("cx"), 0.02 * (k + 1) as f64), Status::Ok);
         assert_eq!(i.do_step(i.time(), 5e-4), Status::Ok);
-        for (o, w) in Out::ALL.iter().zip(want) {
-            let x = i.get_real(vr(o.name())).expect("output");
+        for (name, w) in OUTPUTS_V2.iter().zip(want) {
+            let x = i.get_real(vr(name)).expect("output");
             let want = f64::from_bits(*w);
-            let (x0, w0, floor) = match o.name() {
+            let (x0, w0, floor) = match *name {
                 "T_max" | "T_mean" => (x - 20.0, want - 20.0, 1e-3),
                 name if name.starts_with("frac") => (x, want, 0.02),
                 _ => (x, want, 1.0),
             };
             assert!(
                 (x0 - w0).abs() <= 2e-4 * x0.abs().max(w0.abs()) + floor,
-                "step {k}: {} = {x}, expected {want}",
-                o.name()
+                "step {k}: {name} = {x}, expected {want}"
             );
         }
     }

@@ -1,12 +1,12 @@
 //! FMU states under the importers' call sequences (issue 25): a state restores the mode it was taken in, every state handed out reloads, none is handed out after a failed initialization.
 mod common;
 
-use common::{Fmu, ERROR, OK};
+use common::{Fmu, ERROR, N_OUTPUTS, OK};
 use ecf_contact::ffi::*;
 use fmi_sys::fmi2 as f;
 
 /// A run of `n` steps of 1 ms at c_x = 2 %, 20 m/s: the outputs after each.
-fn continue_run(fmu: &mut Fmu, n: usize) -> Vec<[f64; 13]> {
+fn continue_run(fmu: &mut Fmu, n: usize) -> Vec<[f64; N_OUTPUTS]> {
     (0..n)
         .map(|k| {
             assert_eq!(fmu.set_real("cx", 0.02 + 0.002 * k as f64), OK);

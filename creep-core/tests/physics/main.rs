@@ -16,6 +16,7 @@ mod reversed_rolling;
 mod softening_solve;
 mod speed_and_load;
 mod state_and_inputs;
+mod state_fixtures;
 mod strength_bound;
 mod symmetry;
 mod threads;

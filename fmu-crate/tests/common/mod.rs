@@ -1,6 +1,7 @@
 //! Test helpers: an FMU instance driven through the exported C functions, with the importer's logger routed to the `log` crate and captured per instance name.
 #![allow(dead_code, clippy::missing_safety_doc)]
 
+pub use creep_core::engine::io::N_OUTPUTS;
 use ecf_contact::ffi::*;
 use ecf_contact::model_description::guid;
 use fmi_sys::fmi2 as f;
@@ -154,28 +155,9 @@ impl Fmu {
             assert!(self.set_real(n, x) <= WARNING, "set {n} = {x}");
         }
     }
-    /// All 13 outputs.
-    pub fn outputs(&self) -> [f64; 13] {
-        let mut o = [0.0; 13];
-        let names = [
-            "Fx",
-            "Fy",
-            "Mz",
-            "f",
-            "T_max",
-            "T_mean",
-            "P_fric",
-            "frac_elastic",
-            "frac_plastic",
-            "frac_sliding",
-            "a",
-            "b",
-            "p0",
-        ];
-        for (i, n) in names.iter().enumerate() {
-            o[i] = self.get(n);
-        }
-        o
+    /// All outputs, in the order of creep-core's `OUTPUTS`.
+    pub fn outputs(&self) -> [f64; N_OUTPUTS] {
+        std::array::from_fn(|k| self.get(creep_core::OUTPUTS[k].name))
     }
     pub fn get_state(&self) -> f::fmi2FMUstate {
         let mut s: f::fmi2FMUstate = std::ptr::null_mut();
