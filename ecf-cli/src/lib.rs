@@ -395,7 +395,7 @@ impl ModelArgs {
         if let Some(mu) = self.mu {
             cfg.params
                 .set(creep_core::params::P::Mu, mu)
-                .map_err(|e| rename(e, "--mu"))?;
+                .map_err(|e| rename(e, "mu", "--mu"))?;
         }
         for p in &self.params {
             let (n, v) = p.split_once('=').ok_or_else(|| CreepError::Config {
@@ -443,6 +443,20 @@ impl ModelArgs {
                 })
             }
         }
+        // the contact patch at this load: a geometry whose semi-axes or peak pressure the
+        // model cannot use (e.g. --a-mm 1e300: NaN forces; 1e-300: infinite p0) is refused
+        // here, naming the flags, not turned into a table of NaN
+        creep_core::engine::patch_for(&cfg, self.fn_kn * 1e3).map_err(|e| {
+            let flags = if self.a_mm.is_some() {
+                "--a-mm/--b-mm with --fn-kN"
+            } else {
+                "the geometry of the preset or --config with --fn-kN"
+            };
+            CreepError::Config {
+                source_name: flags.into(),
+                message: e.to_string(),
+            }
+        })?;
         Ok(cfg)
     }
 
@@ -459,6 +473,12 @@ impl ModelArgs {
                 source_name: "--extra".into(),
                 message: format!("'{e}': value is not a number"),
             })?;
+            if !x.is_finite() {
+                return Err(CreepError::Config {
+                    source_name: "--extra".into(),
+                    message: format!("'{e}': the value must be a finite number"),
+                });
+            }
             ex.push((n.to_string(), x));
         }
         m.set_extra(&ex)?;
@@ -477,11 +497,15 @@ impl ModelArgs {
     }
 }
 
-fn rename(e: CreepError, flag: &str) -> CreepError {
+/// The error with the input's name `field` replaced by the flag the user wrote; other
+/// errors (another input, a geometry, a formula) keep their names.
+fn rename(e: CreepError, field: &str, flag: &str) -> CreepError {
     match e {
         CreepError::OutOfRange {
-            value, expected, ..
-        } => CreepError::OutOfRange {
+            field: f,
+            value,
+            expected,
+        } if f == field => CreepError::OutOfRange {
             field: flag.into(),
             value,
             expected,
@@ -532,8 +556,43 @@ fn parse_list(s: &str) -> Result<Vec<f64>, CreepError> {
 
 const OUT_HEADER: &str = "f,Fx_N,Fy_N,Mz_Nm,T_max_C,T_mean_C,P_fric_W,frac_elastic,frac_plastic,frac_sliding,a_mm,b_mm,p0_MPa";
 
-fn out_row(o: &Outputs) -> String {
-    format!(
+/// A table row of the outputs; Err where one is not finite (NaN or inf), naming them: no
+/// table of NaN with exit status 0.
+fn out_row(o: &Outputs) -> Result<String, CreepError> {
+    // in the order of Outputs::to_array
+    const NAMES: [&str; 13] = [
+        "Fx_N",
+        "Fy_N",
+        "Mz_Nm",
+        "f",
+        "T_max_C",
+        "T_mean_C",
+        "P_fric_W",
+        "frac_elastic",
+        "frac_plastic",
+        "frac_sliding",
+        "a_m",
+        "b_m",
+        "p0_Pa",
+    ];
+    let bad: Vec<(&str, f64)> = NAMES
+        .iter()
+        .zip(o.to_array())
+        .filter(|(_, x)| !x.is_finite())
+        .map(|(n, x)| (*n, x))
+        .collect();
+    if let Some(&(name, value)) = bad.first() {
+        let all: Vec<String> = bad.iter().map(|(n, x)| format!("{n} = {x}")).collect();
+        return Err(CreepError::OutOfRange {
+            field: format!("output {name}"),
+            value,
+            expected: format!(
+                "the model's outputs are not finite ({}) at the inputs given: they lie outside the range where the model is defined",
+                all.join(", ")
+            ),
+        });
+    }
+    Ok(format!(
         "{:.8},{:.3},{:.3},{:.5},{:.3},{:.3},{:.3},{:.5},{:.5},{:.5},{:.5},{:.5},{:.3}",
         o.f,
         o.fx,
@@ -548,7 +607,7 @@ fn out_row(o: &Outputs) -> String {
         o.a * 1e3,
         o.b * 1e3,
         o.p0 * 1e-6
-    )
+    ))
 }
 
 fn run(cli: Cli) -> Result<(), CreepError> {
@@ -570,8 +629,10 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             let mut model = m.model(&cfg)?;
             writeln!(w, "cx,{OUT_HEADER}").map_err(io)?;
             for c in list {
-                let o = model.steady(&m.inputs(c)).map_err(|e| rename(e, "--cx"))?;
-                writeln!(w, "{c},{}", out_row(&o)).map_err(io)?;
+                let o = model
+                    .steady(&m.inputs(c))
+                    .map_err(|e| rename(e, "cx", "--cx"))?;
+                writeln!(w, "{c},{}", out_row(&o)?).map_err(io)?;
             }
             warn(&mut model);
         }
@@ -593,9 +654,9 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             tr.apply(&mut model);
             let mut o = model
                 .steady(&m.inputs(cx_from))
-                .map_err(|e| rename(e, "--cx-from"))?;
+                .map_err(|e| rename(e, "cx", "--cx-from"))?;
             let inp = m.inputs(cx_to);
-            inp.validate().map_err(|e| rename(e, "--cx-to"))?;
+            inp.validate().map_err(|e| rename(e, "cx", "--cx-to"))?;
             // each instant at the whole time step nearest to it
             let mut want: Vec<(usize, f64)> = at
                 .iter()
@@ -655,16 +716,16 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             tr.apply(&mut model);
             let o = model
                 .steady(&m.inputs(cx_from))
-                .map_err(|e| rename(e, "--cx-from"))?;
+                .map_err(|e| rename(e, "cx", "--cx-from"))?;
             writeln!(w, "t_s,cx,{OUT_HEADER}").map_err(io)?;
-            writeln!(w, "0,{cx_from},{}", out_row(&o)).map_err(io)?;
+            writeln!(w, "0,{cx_from},{}", out_row(&o)?).map_err(io)?;
             let n = (duration_ms / dt_ms).round() as usize;
             let dt = dt_ms * 1e-3;
             let inp = m.inputs(cx_to);
-            inp.validate().map_err(|e| rename(e, "--cx-to"))?;
+            inp.validate().map_err(|e| rename(e, "cx", "--cx-to"))?;
             for k in 1..=n {
                 let o = model.step(dt, &inp)?;
-                writeln!(w, "{:.8},{cx_to},{}", k as f64 * dt, out_row(&o)).map_err(io)?;
+                writeln!(w, "{:.8},{cx_to},{}", k as f64 * dt, out_row(&o)?).map_err(io)?;
             }
             warn(&mut model);
         }
@@ -693,9 +754,11 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             }
             let mut model = m.model(&cfg)?;
             tr.apply(&mut model);
-            let o = model.steady(&m.inputs(cm)).map_err(|e| rename(e, "--cm"))?;
+            let o = model
+                .steady(&m.inputs(cm))
+                .map_err(|e| rename(e, "cx", "--cm"))?;
             writeln!(w, "t_s,cx,{OUT_HEADER}").map_err(io)?;
-            writeln!(w, "0,{cm},{}", out_row(&o)).map_err(io)?;
+            writeln!(w, "0,{cm},{}", out_row(&o)?).map_err(io)?;
             let dt = 1.0 / (freq_hz * steps_per_cycle as f64);
             for k in 1..=(cycles * steps_per_cycle) {
                 let t = k as f64 * dt;
@@ -703,15 +766,17 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                 let c = cm + ca * (2.0 * std::f64::consts::PI * freq_hz * t).sin();
                 let o = model
                     .step(dt, &m.inputs(c))
-                    .map_err(|e| rename(e, "--cm/--ca"))?;
-                writeln!(w, "{t:.8},{c:.8},{}", out_row(&o)).map_err(io)?;
+                    .map_err(|e| rename(e, "cx", "--cm/--ca"))?;
+                writeln!(w, "{t:.8},{c:.8},{}", out_row(&o)?).map_err(io)?;
             }
             warn(&mut model);
         }
         Cmd::Field { m, cx } => {
             let cfg = m.config()?;
             let mut model = m.model(&cfg)?;
-            model.steady(&m.inputs(cx)).map_err(|e| rename(e, "--cx"))?;
+            model
+                .steady(&m.inputs(cx))
+                .map_err(|e| rename(e, "cx", "--cx"))?;
             let f = field_of(&model)?;
             writeln!(
                 w,
