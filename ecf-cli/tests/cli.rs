@@ -601,33 +601,6 @@ fn inputs_that_gave_nan_or_inf_are_errors() {
     assert_eq!(out.lines().count(), 2, "{out}");
 }
 
-/// A formula whose factor is not a number at the operating point is an error naming the
-/// effect, not a factor silently taken as 0.
-#[test]
-fn a_formula_factor_that_is_not_a_number_is_an_error() {
-    let cfg = TempFile::new(
-        "nanfactor.json",
-        r#"{"preset": "dry", "grid": {"nx": 20, "ny": 5},
-            "formula_effects": [{"name": "root", "target": "tau_c2", "factor": "sqrt(humidity - 100)", "params": {}}]}"#,
-    );
-    let (code, out, err) = ecf(&[
-        "curve",
-        "--config",
-        cfg.path(),
-        "--extra",
-        "humidity=50",
-        "--cx",
-        "0.01",
-    ]);
-    assert_ne!(code, 0, "{out}");
-    assert!(
-        err.contains("formula_effects.root")
-            && err.contains("humidity = 5e1")
-            && err.contains("must be finite"),
-        "{err}"
-    );
-}
-
 /// A geometry with semi-axes and radii both given is refused (the radii were taken silently).
 #[test]
 fn a_geometry_given_two_ways_is_an_error() {

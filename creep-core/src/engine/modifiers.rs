@@ -124,36 +124,9 @@ impl Modifiers {
         for &k in &self.order {
             let m = &self.list[k];
             if !m.uses_local_state() {
-                let f = m.factor(&LocalState::default(), &op, &self.cols[k]);
-                // a negative factor is clamped to 0 (documented); one that is not a number
-                // or infinite has no meaning as a material's factor: refused, with the
-                // columns it read (a NaN would otherwise turn into 0 silently)
-                if !f.is_finite() {
-                    let key = match m {
-                        AnyModifier::Formula(_) => "formula_effects",
-                        AnyModifier::Rust(_) => "custom_effects",
-                    };
-                    let cols: Vec<String> = m
-                        .columns()
-                        .iter()
-                        .zip(&self.cols[k])
-                        .map(|(c, x)| format!("{c} = {x:e}"))
-                        .collect();
-                    return Err(CreepError::Config {
-                        source_name: format!("{key}.{}", m.name()),
-                        message: format!(
-                            "the factor is {f} at the operating point (v = {} m/s, F_N = {} kN, c_x = {}, c_y = {}, spin = {} 1/m{}{}): a factor must be finite",
-                            op.v_mps,
-                            op.fn_kn,
-                            op.cx,
-                            op.cy,
-                            op.spin_per_m,
-                            if cols.is_empty() { "" } else { ", " },
-                            cols.join(", ")
-                        ),
-                    });
-                }
-                fstatic[m.target() as usize] *= f.max(0.0);
+                fstatic[m.target() as usize] *= m
+                    .factor(&LocalState::default(), &op, &self.cols[k])
+                    .max(0.0);
             }
         }
         self.fstatic = fstatic;
