@@ -497,6 +497,24 @@ impl ModelArgs {
     }
 }
 
+/// Most time steps a command takes (10 million: hours of computing on a small grid, and a
+/// table of about 2 GB).
+const MAX_STEPS: f64 = 1e7;
+
+/// Refuses a run of `steps` time steps beyond [`MAX_STEPS`] (e.g. --dt-ms 1e-300 asked for
+/// 5e300 steps and ran forever), naming `flag` and its `value`.
+fn check_step_count(flag: &str, value: f64, steps: f64) -> Result<(), CreepError> {
+    if steps <= MAX_STEPS {
+        Ok(())
+    } else {
+        Err(bad(
+            flag,
+            value,
+            &format!("gives {steps:.3e} time steps; at most {MAX_STEPS:e}"),
+        ))
+    }
+}
+
 /// The error with the input's name `field` replaced by the flag the user wrote; other
 /// errors (another input, a geometry, a formula) keep their names.
 fn rename(e: CreepError, field: &str, flag: &str) -> CreepError {
@@ -650,6 +668,8 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             if !(dt_ms.is_finite() && dt_ms > 0.0) {
                 return Err(bad("--dt-ms", dt_ms, "must be finite and > 0 ms"));
             }
+            let latest = at.iter().copied().fold(0.0, f64::max);
+            check_step_count("--dt-ms", dt_ms, latest / dt_ms)?;
             let mut model = m.model(&cfg)?;
             tr.apply(&mut model);
             let mut o = model
@@ -712,6 +732,7 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             if !(dt_ms.is_finite() && dt_ms > 0.0 && dt_ms <= duration_ms) {
                 return Err(bad("--dt-ms", dt_ms, "must be > 0 and <= --duration-ms"));
             }
+            check_step_count("--dt-ms", dt_ms, duration_ms / dt_ms)?;
             let mut model = m.model(&cfg)?;
             tr.apply(&mut model);
             let o = model
@@ -752,6 +773,11 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                     "need >= 1 cycle and >= 4 steps per cycle",
                 ));
             }
+            check_step_count(
+                "--cycles/--steps-per-cycle",
+                cycles as f64,
+                cycles as f64 * steps_per_cycle as f64,
+            )?;
             let mut model = m.model(&cfg)?;
             tr.apply(&mut model);
             let o = model

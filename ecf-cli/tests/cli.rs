@@ -627,3 +627,44 @@ fn a_geometry_given_two_ways_is_an_error() {
         assert_eq!(code, 0, "{g}: {err}");
     }
 }
+
+/// A time step so small that the run would never end (the CLI fuzzer's find: --dt-ms 1e-300
+/// over 4.9 ms ran for ever) is refused, naming the flag and the step count.
+#[test]
+fn a_run_of_too_many_steps_is_refused() {
+    let (code, out, err) = ecf(&[
+        "step",
+        "--grid",
+        "5x3",
+        "--cx-from",
+        "0",
+        "--cx-to",
+        "0.005",
+        "--duration-ms",
+        "4.9",
+        "--dt-ms",
+        "1e-300",
+    ]);
+    assert_ne!(code, 0, "{out}");
+    assert!(
+        err.contains("--dt-ms = 1e-300") && err.contains("time steps; at most 1e7"),
+        "{err}"
+    );
+    let (code, _, err) = ecf(&[
+        "sine",
+        "--grid",
+        "5x3",
+        "--cm",
+        "0.01",
+        "--ca",
+        "0.001",
+        "--freq-hz",
+        "10",
+        "--cycles",
+        "100000",
+        "--steps-per-cycle",
+        "1000",
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--cycles/--steps-per-cycle"), "{err}");
+}
