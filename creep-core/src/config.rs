@@ -294,6 +294,33 @@ fn parse_geometry(src: &str, m: &Map<String, Value>) -> Result<Geometry> {
             return Err(cfg_err(src, format!("geometry.{k}: unknown key; accepted: a_mm, b_mm, fn_ref_kN | rx_mm, ry_mm | line_radius_mm, line_width_mm")));
         }
     }
+    // one way of giving the geometry: keys of two groups (e.g. semi-axes and radii) are
+    // refused rather than one group silently taking precedence
+    let groups: [&[&str]; 3] = [
+        &["a_mm", "b_mm", "fn_ref_kN"],
+        &["rx_mm", "ry_mm"],
+        &["line_radius_mm", "line_width_mm"],
+    ];
+    let used: Vec<String> = groups
+        .iter()
+        .filter(|g| g.iter().any(|k| m.contains_key(*k)))
+        .map(|g| {
+            g.iter()
+                .filter(|k| m.contains_key(**k))
+                .copied()
+                .collect::<Vec<_>>()
+                .join(", ")
+        })
+        .collect();
+    if used.len() > 1 {
+        return Err(cfg_err(
+            src,
+            format!(
+                "geometry: give one of a_mm, b_mm and fn_ref_kN | rx_mm and ry_mm | line_radius_mm and line_width_mm; got {}",
+                used.join(" and ")
+            ),
+        ));
+    }
     if let (Some(r), Some(w)) = (
         geo_num(src, m, "line_radius_mm")?,
         geo_num(src, m, "line_width_mm")?,

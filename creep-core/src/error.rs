@@ -6,7 +6,7 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum CreepError {
     /// An input or parameter is outside its accepted range.
-    #[error("{field} = {value}: {expected}")]
+    #[error("{field} = {}: {expected}", show_number(*.value))]
     OutOfRange {
         /// Name of the input, flag or parameter (as the user wrote it).
         field: String,
@@ -47,6 +47,17 @@ pub enum CreepError {
     /// A saved state could not be restored.
     #[error("state: {0}")]
     State(String),
+}
+
+/// A number as a message shows it: as Rust prints it where that is short, in exponent form
+/// where it is very large or very small (1e300, not 301 digits).
+pub fn show_number(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }
 
 /// Result alias of the physics crate.

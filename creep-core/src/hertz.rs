@@ -1,7 +1,7 @@
 //! Normal contact: exact elliptic Hertz contact (seed Eq. 2.1-2.6) and line contact (Eq. 2.7).
 
 use crate::config::{Config, Geometry};
-use crate::error::{check_positive, check_range, Result};
+use crate::error::{check_positive, check_range, CreepError, Result};
 use crate::params::P;
 use std::f64::consts::PI;
 
@@ -143,8 +143,49 @@ pub fn line_contact(r: f64, fn_line: f64, width: f64, g: f64, nu: f64) -> Result
     })
 }
 
-/// Contact patch of a configuration at a normal force.
+/// Smallest and largest semi-axis of a contact patch, m (1 um .. 10 m): far outside the
+/// wheel-rail and twin-disc range on both sides, and inside the range where the bristle grid,
+/// the pressure and the forces stay finite (a semi-axis of 1e300 mm gave NaN forces, one of
+/// 1e-300 mm an infinite peak pressure).
+pub const SEMI_AXIS_RANGE_M: (f64, f64) = (1e-6, 10.0);
+
+/// Contact patch of a configuration at a normal force; refuses a patch whose semi-axes lie
+/// outside [`SEMI_AXIS_RANGE_M`] or whose peak pressure is not finite, naming the geometry.
 pub fn patch_for(cfg: &Config, fn_n: f64) -> Result<Patch> {
+    let patch = patch_of_geometry(cfg, fn_n)?;
+    let (lo, hi) = SEMI_AXIS_RANGE_M;
+    let what = match cfg.geometry {
+        Geometry::SemiAxes { .. } => "the semi-axes given (scaled by (F_N/F_N,ref)^(1/3))",
+        Geometry::Curvatures { .. } => "Hertz's solution for the radii given",
+        Geometry::Line { .. } => "the line contact's radius and width",
+    };
+    for (name, x) in [
+        ("contact semi-axis a (m)", patch.a),
+        ("contact semi-axis b (m)", patch.b),
+    ] {
+        if !(x >= lo && x <= hi) {
+            return Err(CreepError::OutOfRange {
+                field: name.into(),
+                value: x,
+                expected: format!(
+                    "at F_N = {fn_n} N, from {what}: must be within [{lo:e}, {hi}] m ([{}, {}] mm)",
+                    lo * 1e3,
+                    hi * 1e3
+                ),
+            });
+        }
+    }
+    if !patch.p0.is_finite() {
+        return Err(CreepError::OutOfRange {
+            field: "peak pressure p0 (Pa)".into(),
+            value: patch.p0,
+            expected: format!("at F_N = {fn_n} N, from {what}: must be finite"),
+        });
+    }
+    Ok(patch)
+}
+
+fn patch_of_geometry(cfg: &Config, fn_n: f64) -> Result<Patch> {
     let p = &cfg.params;
     match cfg.geometry {
         Geometry::SemiAxes { a, b, fn_ref } => {

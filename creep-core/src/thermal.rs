@@ -212,6 +212,36 @@ pub fn peclet_ok(a: f64, v: f64, v_w: f64, kappa_w: f64, kappa_r: f64) -> bool {
     a * (v + v_w) > 20.0 * (kappa_r + kappa_w)
 }
 
+/// Relative change of the softening factors (exp(-c T), c the largest temperature
+/// coefficient) that the local temperature solves resolve: 1e-10. The forces follow the
+/// temperature through these factors, so a solve that stops anywhere within its tolerance
+/// moves them by about this much relative: with 1e-10 a finite-difference derivative with a
+/// relative increment of 1e-6 is still right to about 1e-4 relative (issue 25). The earlier
+/// 1e-4 made the outputs jump by 1e-6..1e-5 relative where an input moved by one ulp changed
+/// an iteration count; it cost about a fifth fewer instructions per transient step
+/// (docs/model.md, "Tolerance of the temperature solve").
+pub const T_TOL_REL: f64 = 1e-10;
+
+/// Smallest temperature tolerance, K: well above the rounding of g(T) = t_hist + self_c q - T
+/// at flash temperatures up to 10^4 degC (about 1e-12 K), so a solve never waits for a
+/// residual that rounding does not let it reach.
+pub const T_TOL_MIN: f64 = 1e-11;
+
+/// Largest temperature tolerance, K, where no material law depends on T (the solve then
+/// only sets the reported temperatures, and converges in one step anyway).
+pub const T_TOL_MAX: f64 = 1e-8;
+
+/// Temperature tolerance (K) of the local solves for a largest temperature coefficient
+/// `cmax` (1/degC) of the material laws: [`T_TOL_REL`] / cmax within
+/// [[`T_TOL_MIN`], [`T_TOL_MAX`]].
+pub fn temperature_tolerance(cmax: f64) -> f64 {
+    if cmax > 0.0 {
+        (T_TOL_REL / cmax).clamp(T_TOL_MIN, T_TOL_MAX)
+    } else {
+        T_TOL_MAX
+    }
+}
+
 /// Solves the local flash temperature of a bristle move, T = t_hist + self_c q(T) (Eq. 4.35:
 /// history part `t_hist`, the sub-step's own heat `self_c q`), for the smallest root above
 /// `t_hist`: the temperature the bristle reaches first while heating up (q(T) may rise with T
@@ -241,7 +271,7 @@ pub fn solve_self_heating<S: Copy>(
     // turns an elastic bristle plastic): secant steps upward (fixed-point steps where the
     // secant does not point up) while g(T) = t_hist + self_c q(T) - T > 0, then Illinois
     // regula falsi once bracketed;
-    // tolerance `t_tol`: 1e-4 relative change of the softening factors.
+    // tolerance `tol` (K): see [`temperature_tolerance`].
     let g_of = |q: f64, t: f64| t_hist + self_c * q - t;
     let (mut ta, mut ga) = (t_hist, self_c * q);
     // predictor: this bristle's heat of its previous sub-step, when it lies inside
@@ -318,7 +348,8 @@ pub fn solve_self_heating<S: Copy>(
             let gc = g_of(qc, tc);
             ns = sc;
             q = qc;
-            if gc.abs() < tol || (tb - ta).abs() < 1e-6 {
+            // a bracket a few ulps wide: the secant root tc is as close as rounding allows
+            if gc.abs() < tol || (tb - ta).abs() <= 8.0 * f64::EPSILON * tb.abs() {
                 break;
             }
             if gc < 0.0 {
@@ -464,8 +495,12 @@ pub fn solve_monotone(
 }
 
 /// Width of a bracket, in tolerances, below which the root's state is interpolated between
-/// the bracket's ends instead of evaluated (the interpolation error is far below the tolerance
-/// there: the residual is linear over a few kelvin).
+/// the bracket's ends instead of evaluated. The residual and the state are smooth in T
+/// within one regime, so the interpolation's error is of the order of the width squared
+/// times their curvature: with the tolerance of [`temperature_tolerance`] the width is
+/// 5e-7 / cmax K, over which the softening factors change by 5e-7 relative, and the error is
+/// about 1e-13 relative. (With the earlier tolerance of 1e-4 relative this width was 15 K on
+/// the dry preset, and the interpolation moved F_x by 0.37 % from the converged value.)
 const LERP_TOLS: f64 = 5000.0;
 
 /// The next trial temperature above `tb` while g > 0 at both `ta` < `tb`: the secant's zero

@@ -398,7 +398,7 @@ impl ModelArgs {
         if let Some(mu) = self.mu {
             cfg.params
                 .set(creep_core::params::P::Mu, mu)
-                .map_err(|e| rename(e, "--mu"))?;
+                .map_err(|e| rename(e, "mu", "--mu"))?;
         }
         for p in &self.params {
             let (n, v) = p.split_once('=').ok_or_else(|| CreepError::Config {
@@ -446,6 +446,20 @@ impl ModelArgs {
                 })
             }
         }
+        // the contact patch at this load: a geometry whose semi-axes or peak pressure the
+        // model cannot use (e.g. --a-mm 1e300: NaN forces; 1e-300: infinite p0) is refused
+        // here, naming the flags, not turned into a table of NaN
+        creep_core::engine::patch_for(&cfg, self.fn_kn * 1e3).map_err(|e| {
+            let flags = if self.a_mm.is_some() {
+                "--a-mm/--b-mm with --fn-kN"
+            } else {
+                "the geometry of the preset or --config with --fn-kN"
+            };
+            CreepError::Config {
+                source_name: flags.into(),
+                message: e.to_string(),
+            }
+        })?;
         Ok(cfg)
     }
 
@@ -462,6 +476,12 @@ impl ModelArgs {
                 source_name: "--extra".into(),
                 message: format!("'{e}': value is not a number"),
             })?;
+            if !x.is_finite() {
+                return Err(CreepError::Config {
+                    source_name: "--extra".into(),
+                    message: format!("'{e}': the value must be a finite number"),
+                });
+            }
             ex.push((n.to_string(), x));
         }
         m.set_extra(&ex)?;
@@ -480,11 +500,33 @@ impl ModelArgs {
     }
 }
 
-fn rename(e: CreepError, flag: &str) -> CreepError {
+/// Most time steps a command takes (10 million: hours of computing on a small grid, and a
+/// table of about 2 GB).
+const MAX_STEPS: f64 = 1e7;
+
+/// Refuses a run of `steps` time steps beyond [`MAX_STEPS`] (e.g. --dt-ms 1e-300 asked for
+/// 5e300 steps and ran forever), naming `flag` and its `value`.
+fn check_step_count(flag: &str, value: f64, steps: f64) -> Result<(), CreepError> {
+    if steps <= MAX_STEPS {
+        Ok(())
+    } else {
+        Err(bad(
+            flag,
+            value,
+            &format!("gives {steps:.3e} time steps; at most {MAX_STEPS:e}"),
+        ))
+    }
+}
+
+/// The error with the input's name `field` replaced by the flag the user wrote; other
+/// errors (another input, a geometry, a formula) keep their names.
+fn rename(e: CreepError, field: &str, flag: &str) -> CreepError {
     match e {
         CreepError::OutOfRange {
-            value, expected, ..
-        } => CreepError::OutOfRange {
+            field: f,
+            value,
+            expected,
+        } if f == field => CreepError::OutOfRange {
             field: flag.into(),
             value,
             expected,
@@ -542,13 +584,31 @@ fn out_header() -> String {
         .join(",")
 }
 
-/// One row of the output columns (see [`out_header`]).
-fn out_row(o: &Outputs) -> String {
-    creep_core::engine::io::csv_outputs()
+/// One row of the output columns (see [`out_header`]); Err where one is not finite (NaN or
+/// inf), naming them: no table of NaN with exit status 0.
+fn out_row(o: &Outputs) -> Result<String, CreepError> {
+    let cols = creep_core::engine::io::csv_outputs();
+    let bad: Vec<(&str, f64)> = cols
+        .iter()
+        .map(|s| (s.csv.header, (s.get)(o)))
+        .filter(|(_, x)| !x.is_finite())
+        .collect();
+    if let Some(&(name, value)) = bad.first() {
+        let all: Vec<String> = bad.iter().map(|(n, x)| format!("{n} = {x}")).collect();
+        return Err(CreepError::OutOfRange {
+            field: format!("output {name}"),
+            value,
+            expected: format!(
+                "the model's outputs are not finite ({}) at the inputs given: they lie outside the range where the model is defined",
+                all.join(", ")
+            ),
+        });
+    }
+    Ok(cols
         .iter()
         .map(|s| format!("{:.*}", s.csv.decimals, (s.get)(o) * s.csv.scale))
         .collect::<Vec<_>>()
-        .join(",")
+        .join(","))
 }
 
 /// `ecf info`: the presets, the effects, the Rust effects linked in, and the tables of
@@ -622,8 +682,10 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             let mut model = m.model(&cfg)?;
             writeln!(w, "cx,{}", out_header()).map_err(io)?;
             for c in list {
-                let o = model.steady(&m.inputs(c)).map_err(|e| rename(e, "--cx"))?;
-                writeln!(w, "{c},{}", out_row(&o)).map_err(io)?;
+                let o = model
+                    .steady(&m.inputs(c))
+                    .map_err(|e| rename(e, "cx", "--cx"))?;
+                writeln!(w, "{c},{}", out_row(&o)?).map_err(io)?;
             }
             warn(&mut model);
         }
@@ -641,13 +703,15 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             if !(dt_ms.is_finite() && dt_ms > 0.0) {
                 return Err(bad("--dt-ms", dt_ms, "must be finite and > 0 ms"));
             }
+            let latest = at.iter().copied().fold(0.0, f64::max);
+            check_step_count("--dt-ms", dt_ms, latest / dt_ms)?;
             let mut model = m.model(&cfg)?;
             tr.apply(&mut model);
             let mut o = model
                 .steady(&m.inputs(cx_from))
-                .map_err(|e| rename(e, "--cx-from"))?;
+                .map_err(|e| rename(e, "cx", "--cx-from"))?;
             let inp = m.inputs(cx_to);
-            inp.validate().map_err(|e| rename(e, "--cx-to"))?;
+            inp.validate().map_err(|e| rename(e, "cx", "--cx-to"))?;
             // each instant at the whole time step nearest to it
             let mut want: Vec<(usize, f64)> = at
                 .iter()
@@ -703,20 +767,21 @@ fn run(cli: Cli) -> Result<(), CreepError> {
             if !(dt_ms.is_finite() && dt_ms > 0.0 && dt_ms <= duration_ms) {
                 return Err(bad("--dt-ms", dt_ms, "must be > 0 and <= --duration-ms"));
             }
+            check_step_count("--dt-ms", dt_ms, duration_ms / dt_ms)?;
             let mut model = m.model(&cfg)?;
             tr.apply(&mut model);
             let o = model
                 .steady(&m.inputs(cx_from))
-                .map_err(|e| rename(e, "--cx-from"))?;
+                .map_err(|e| rename(e, "cx", "--cx-from"))?;
             writeln!(w, "t_s,cx,{}", out_header()).map_err(io)?;
-            writeln!(w, "0,{cx_from},{}", out_row(&o)).map_err(io)?;
+            writeln!(w, "0,{cx_from},{}", out_row(&o)?).map_err(io)?;
             let n = (duration_ms / dt_ms).round() as usize;
             let dt = dt_ms * 1e-3;
             let inp = m.inputs(cx_to);
-            inp.validate().map_err(|e| rename(e, "--cx-to"))?;
+            inp.validate().map_err(|e| rename(e, "cx", "--cx-to"))?;
             for k in 1..=n {
                 let o = model.step(dt, &inp)?;
-                writeln!(w, "{:.8},{cx_to},{}", k as f64 * dt, out_row(&o)).map_err(io)?;
+                writeln!(w, "{:.8},{cx_to},{}", k as f64 * dt, out_row(&o)?).map_err(io)?;
             }
             warn(&mut model);
         }
@@ -743,11 +808,18 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                     "need >= 1 cycle and >= 4 steps per cycle",
                 ));
             }
+            check_step_count(
+                "--cycles/--steps-per-cycle",
+                cycles as f64,
+                cycles as f64 * steps_per_cycle as f64,
+            )?;
             let mut model = m.model(&cfg)?;
             tr.apply(&mut model);
-            let o = model.steady(&m.inputs(cm)).map_err(|e| rename(e, "--cm"))?;
+            let o = model
+                .steady(&m.inputs(cm))
+                .map_err(|e| rename(e, "cx", "--cm"))?;
             writeln!(w, "t_s,cx,{}", out_header()).map_err(io)?;
-            writeln!(w, "0,{cm},{}", out_row(&o)).map_err(io)?;
+            writeln!(w, "0,{cm},{}", out_row(&o)?).map_err(io)?;
             let dt = 1.0 / (freq_hz * steps_per_cycle as f64);
             for k in 1..=(cycles * steps_per_cycle) {
                 let t = k as f64 * dt;
@@ -755,15 +827,17 @@ fn run(cli: Cli) -> Result<(), CreepError> {
                 let c = cm + ca * (2.0 * std::f64::consts::PI * freq_hz * t).sin();
                 let o = model
                     .step(dt, &m.inputs(c))
-                    .map_err(|e| rename(e, "--cm/--ca"))?;
-                writeln!(w, "{t:.8},{c:.8},{}", out_row(&o)).map_err(io)?;
+                    .map_err(|e| rename(e, "cx", "--cm/--ca"))?;
+                writeln!(w, "{t:.8},{c:.8},{}", out_row(&o)?).map_err(io)?;
             }
             warn(&mut model);
         }
         Cmd::Field { m, cx } => {
             let cfg = m.config()?;
             let mut model = m.model(&cfg)?;
-            model.steady(&m.inputs(cx)).map_err(|e| rename(e, "--cx"))?;
+            model
+                .steady(&m.inputs(cx))
+                .map_err(|e| rename(e, "cx", "--cx"))?;
             let f = field_of(&model)?;
             writeln!(
                 w,

@@ -520,3 +520,151 @@ fn a_formula_nested_ten_thousand_deep_is_an_error_not_a_crash() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A temporary file with `text` (removed when dropped).
+struct TempFile(std::path::PathBuf);
+impl TempFile {
+    fn new(name: &str, text: &str) -> Self {
+        let p = std::env::temp_dir().join(format!("ecf-cli-{}-{name}", std::process::id()));
+        std::fs::write(&p, text).expect("write temp file");
+        TempFile(p)
+    }
+    fn path(&self) -> &str {
+        self.0.to_str().expect("utf-8 temp path")
+    }
+}
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
+
+/// Inputs that gave NaN or inf with exit status 0 (issue 25) now fail, naming what is wrong,
+/// and print no table.
+#[test]
+fn inputs_that_gave_nan_or_inf_are_errors() {
+    let huge = ecf(&[
+        "curve", "--a-mm", "1e300", "--b-mm", "1e300", "--cx", "0.01",
+    ]);
+    let tiny = ecf(&["curve", "--a-mm", "1e-300", "--b-mm", "5", "--cx", "0.01"]);
+    for (code, out, err) in [&huge, &tiny] {
+        assert_ne!(*code, 0, "{out}");
+        assert!(out.is_empty(), "a table was printed: {out}");
+        assert!(
+            err.contains("--a-mm/--b-mm") && err.contains("contact semi-axis a (m)"),
+            "{err}"
+        );
+        assert!(err.contains("[0.001, 10000] mm"), "{err}");
+    }
+    // numbers in exponent form, not 300 digits
+    assert!(huge.2.contains("= 1e297"), "{}", huge.2);
+    assert!(huge.2.len() < 400, "{}", huge.2);
+
+    // a formula reading a data column: a NaN column value is refused where it is parsed; a
+    // finite value that drives an output to inf is refused by the output check
+    let cfg = TempFile::new(
+        "wild.json",
+        r#"{"preset": "dry", "grid": {"nx": 20, "ny": 5},
+            "formula_effects": [{"name": "wild", "target": "tau_c2", "factor": "humidity / 50", "params": {}}]}"#,
+    );
+    let run = |x: &str| {
+        ecf(&[
+            "curve",
+            "--config",
+            cfg.path(),
+            "--extra",
+            &format!("humidity={x}"),
+            "--cx",
+            "0.01",
+        ])
+    };
+    for x in ["nan", "inf", "-inf"] {
+        let (code, out, err) = run(x);
+        assert_ne!(code, 0, "humidity={x}: {out}");
+        assert!(
+            err.contains("--extra")
+                && err.contains(&format!("'humidity={x}'"))
+                && err.contains("finite"),
+            "{err}"
+        );
+    }
+    let (code, out, err) = run("1e308");
+    assert_ne!(code, 0, "{out}");
+    assert!(out.is_empty(), "{out}");
+    assert!(
+        err.contains("not finite") && err.contains("f = inf"),
+        "{err}"
+    );
+    // the same configuration at an ordinary humidity runs
+    let (code, out, err) = run("60");
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.lines().count(), 2, "{out}");
+}
+
+/// A geometry with semi-axes and radii both given is refused (the radii were taken silently).
+#[test]
+fn a_geometry_given_two_ways_is_an_error() {
+    let cfg = TempFile::new(
+        "twoways.json",
+        r#"{"preset": "dry", "geometry": {"a_mm": 7, "b_mm": 8, "fn_ref_kN": 110, "rx_mm": 460, "ry_mm": 300}}"#,
+    );
+    let (code, out, err) = ecf(&["curve", "--config", cfg.path(), "--cx", "0.01"]);
+    assert_ne!(code, 0, "{out}");
+    assert!(
+        err.contains("give one of") && err.contains("a_mm, b_mm, fn_ref_kN and rx_mm, ry_mm"),
+        "{err}"
+    );
+    // each way alone is accepted
+    for g in [
+        r#"{"a_mm": 7, "b_mm": 8, "fn_ref_kN": 110}"#,
+        r#"{"rx_mm": 460, "ry_mm": 300}"#,
+    ] {
+        let one = TempFile::new(
+            "oneway.json",
+            &format!(r#"{{"preset": "dry", "grid": {{"nx": 20, "ny": 5}}, "geometry": {g}}}"#),
+        );
+        let (code, _, err) = ecf(&["curve", "--config", one.path(), "--cx", "0.01"]);
+        assert_eq!(code, 0, "{g}: {err}");
+    }
+}
+
+/// A time step so small that the run would never end (the CLI fuzzer's find: --dt-ms 1e-300
+/// over 4.9 ms ran for ever) is refused, naming the flag and the step count.
+#[test]
+fn a_run_of_too_many_steps_is_refused() {
+    let (code, out, err) = ecf(&[
+        "step",
+        "--grid",
+        "5x3",
+        "--cx-from",
+        "0",
+        "--cx-to",
+        "0.005",
+        "--duration-ms",
+        "4.9",
+        "--dt-ms",
+        "1e-300",
+    ]);
+    assert_ne!(code, 0, "{out}");
+    assert!(
+        err.contains("--dt-ms = 1e-300") && err.contains("time steps; at most 1e7"),
+        "{err}"
+    );
+    let (code, _, err) = ecf(&[
+        "sine",
+        "--grid",
+        "5x3",
+        "--cm",
+        "0.01",
+        "--ca",
+        "0.001",
+        "--freq-hz",
+        "10",
+        "--cycles",
+        "100000",
+        "--steps-per-cycle",
+        "1000",
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--cycles/--steps-per-cycle"), "{err}");
+}

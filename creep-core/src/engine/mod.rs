@@ -158,7 +158,8 @@ pub struct Contact {
     out: Outputs,
     initialized: bool,
     warnings: Vec<String>,
-    /// Temperature tolerance of the local solve, K: 1e-4 / (largest temperature coefficient).
+    /// Temperature tolerance of the local solve, K ([`thermal::temperature_tolerance`] of the
+    /// largest temperature coefficient).
     t_tol: f64,
     /// Pressure parts of the lattice nodes per strip, for the peak pressure in `np_cache_p0`.
     np_cache: Vec<Vec<crate::material::NodeP>>,
@@ -253,11 +254,7 @@ impl Contact {
             t_tol: {
                 let r = Resolved::from_config(cfg);
                 let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
-                if cmax > 0.0 {
-                    (1e-4 / cmax).min(0.1)
-                } else {
-                    0.1
-                }
+                thermal::temperature_tolerance(cmax)
             },
         };
         c.set_softening_solve(true);

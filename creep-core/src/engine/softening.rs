@@ -251,7 +251,7 @@ impl Contact {
                         q_of,
                     )?;
                     // the stress at the root: extrapolated over the last step (shorter than
-                    // the tolerance: tau_c2 changes by less than 1e-4 of itself over it)
+                    // the tolerance: tau_c2 changes by less than 1e-10 of itself over it)
                     // unless the bristle may cross tau_c2 = t0 on it
                     let (tl, t_l, dt_l, sl, tc2_l) = last.get();
                     if (t0 - tc2_l).abs() > 2e-4 * tc2_l {

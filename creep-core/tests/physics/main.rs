@@ -1,4 +1,4 @@
-//! creep-core's scenario tests: physics against limits, published results, symmetry, convergence, the seed's qualitative results, bounded work, threads.
+//! creep-core's scenario tests: physics against limits, published results, symmetry, convergence, the seed's qualitative results, bounded work, threads, smoothness in the inputs.
 //!
 //! One test binary for all of them: each file is a module (one link instead of 16; CI time).
 
@@ -13,6 +13,7 @@ mod modifiers;
 mod periodic_creepage;
 mod published_references;
 mod reversed_rolling;
+mod smoothness;
 mod softening_solve;
 mod speed_and_load;
 mod state_and_inputs;
