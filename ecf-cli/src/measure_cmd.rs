@@ -63,12 +63,13 @@ pub fn compare(
             cfg.preset
         )
         .map_err(io)?;
-        writeln!(
-            w,
-            "CV(RMSE) = {:.2} % overall, {:.2} % for c_x >= 1 %",
-            c.cv_rmse_pct, c.cv_rmse_pct_cx_ge_1pct
-        )
-        .map_err(io)?;
+        // no row at c_x >= 1 %: say so instead of printing NaN
+        let ge_1pct = if c.cv_rmse_pct_cx_ge_1pct.is_finite() {
+            format!("{:.2} % for c_x >= 1 %", c.cv_rmse_pct_cx_ge_1pct)
+        } else {
+            "no row at c_x >= 1 %".to_string()
+        };
+        writeln!(w, "CV(RMSE) = {:.2} % overall, {ge_1pct}", c.cv_rmse_pct).map_err(io)?;
         writeln!(
             w,
             "{:<10} {:<16} {:>5} {:>12} {:>14}",

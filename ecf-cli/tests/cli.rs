@@ -326,6 +326,31 @@ fn hpt_files_are_compared_and_fitted() {
     let (code, _, err) = ecf(&["compare", data.to_str().unwrap(), "--preset", "dry"]);
     assert_ne!(code, 0);
     assert!(err.contains("line 2") && err.contains("u_mm"), "{err}");
+    // values beyond any test's range are refused, not compared into "CV(RMSE) = NaN %"
+    std::fs::write(&data, "p_MPa,u_mm,tau_MPa\n500,0.1,150\n500,0.3,1e308\n").unwrap();
+    let (code, out, err) = ecf(&["compare", data.to_str().unwrap(), "--preset", "dry"]);
+    assert_ne!(code, 0, "{out}");
+    assert!(
+        err.contains("line 3") && err.contains("tau_MPa") && err.contains("range"),
+        "{err}"
+    );
+    assert!(!out.contains("NaN"), "{out}");
+}
+
+#[test]
+fn compare_says_when_no_row_reaches_one_percent() {
+    let dir = std::env::temp_dir().join(format!("ecf-cli-small-cx-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let data = dir.join("small.csv");
+    std::fs::write(
+        &data,
+        "cx,f,v_mps,fn_kN\n0.001,0.15,20,110\n0.002,0.2,20,110\n",
+    )
+    .unwrap();
+    let (code, out, err) = ecf(&["compare", data.to_str().unwrap(), "--preset", "dry"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("no row at c_x >= 1 %"), "{out}");
+    assert!(!out.contains("NaN"), "{out}");
 }
 
 /// Columns of a CSV text by header name.

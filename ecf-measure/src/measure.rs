@@ -1089,6 +1089,14 @@ fn open_csv<'a>(
     Ok((rdr, header))
 }
 
+/// Largest values a high-pressure-torsion file may hold, per column (column, value, unit):
+/// 100 GPa of normal or shear stress, 10 m of displacement.
+const HPT_MAX: [(&str, f64, &str); 3] = [
+    ("p_MPa", 1e5, "MPa"),
+    ("u_mm", 1e4, "mm"),
+    ("tau_MPa", 1e5, "MPa"),
+];
+
 /// Reads a high-pressure-torsion file (`p_MPa`, `u_mm`, `tau_MPa`, optional `series`, `condition`).
 pub fn read_hpt(text: &str, src: &str) -> Result<Vec<HptRow>> {
     let (mut rdr, header) = open_csv(
@@ -1110,6 +1118,21 @@ pub fn read_hpt(text: &str, src: &str) -> Result<Vec<HptRow>> {
                 .map_err(|_| err(src, line, n, format!("'{}' is not a number", cut(s))))?;
             if !x.is_finite() || x < 0.0 {
                 return Err(err(src, line, n, format!("{x}: must be finite and >= 0")));
+            }
+            // a pressure-shear test's range (far beyond any steel's strength, and short of
+            // where the squares of a CV(RMSE) would overflow)
+            let max = HPT_MAX
+                .iter()
+                .find(|(c, _, _)| *c == n)
+                .map_or(f64::INFINITY, |m| m.1);
+            if x > max {
+                let unit = HPT_MAX.iter().find(|(c, _, _)| *c == n).map_or("", |m| m.2);
+                return Err(err(
+                    src,
+                    line,
+                    n,
+                    format!("{x:e}: outside a pressure-shear test's range [0, {max:e}] {unit}"),
+                ));
             }
             Ok(x)
         };
