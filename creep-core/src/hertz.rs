@@ -143,11 +143,14 @@ pub fn line_contact(r: f64, fn_line: f64, width: f64, g: f64, nu: f64) -> Result
     })
 }
 
-/// Smallest and largest semi-axis of a contact patch, m (1 um .. 10 m): far outside the
+/// Smallest and largest semi-axis of a contact patch, m (1 nm .. 10 m): far outside the
 /// wheel-rail and twin-disc range on both sides, and inside the range where the bristle grid,
 /// the pressure and the forces stay finite (a semi-axis of 1e300 mm gave NaN forces, one of
-/// 1e-300 mm an infinite peak pressure).
-pub const SEMI_AXIS_RANGE_M: (f64, f64) = (1e-6, 10.0);
+/// 1e-300 mm an infinite peak pressure). The floor lies below the half-width of a line
+/// contact at the lift-off load [`crate::engine::F_LIFT_OFF`] (about 0.1 um for twin_disc,
+/// whose half-width grows like sqrt(F_N)), so every load the engine does not treat as
+/// lift-off has a usable patch.
+pub const SEMI_AXIS_RANGE_M: (f64, f64) = (1e-9, 10.0);
 
 /// Contact patch of a configuration at a normal force; refuses a patch whose semi-axes lie
 /// outside [`SEMI_AXIS_RANGE_M`] or whose peak pressure is not finite, naming the geometry.
@@ -168,7 +171,7 @@ pub fn patch_for(cfg: &Config, fn_n: f64) -> Result<Patch> {
                 field: name.into(),
                 value: x,
                 expected: format!(
-                    "at F_N = {fn_n} N, from {what}: must be within [{lo:e}, {hi}] m ([{}, {}] mm)",
+                    "at F_N = {fn_n} N, from {what}: must be within [{lo:.0e}, {hi}] m ([{:.0e}, {}] mm)",
                     lo * 1e3,
                     hi * 1e3
                 ),

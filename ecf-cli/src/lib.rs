@@ -449,17 +449,20 @@ impl ModelArgs {
         // the contact patch at this load: a geometry whose semi-axes or peak pressure the
         // model cannot use (e.g. --a-mm 1e300: NaN forces; 1e-300: infinite p0) is refused
         // here, naming the flags, not turned into a table of NaN
-        creep_core::engine::patch_for(&cfg, self.fn_kn * 1e3).map_err(|e| {
-            let flags = if self.a_mm.is_some() {
-                "--a-mm/--b-mm with --fn-kN"
-            } else {
-                "the geometry of the preset or --config with --fn-kN"
-            };
-            CreepError::Config {
-                source_name: flags.into(),
-                message: e.to_string(),
-            }
-        })?;
+        // (at or below the lift-off load the engine returns zero forces without a patch)
+        if self.fn_kn * 1e3 > creep_core::engine::F_LIFT_OFF {
+            creep_core::engine::patch_for(&cfg, self.fn_kn * 1e3).map_err(|e| {
+                let flags = if self.a_mm.is_some() {
+                    "--a-mm/--b-mm with --fn-kN"
+                } else {
+                    "the geometry of the preset or --config with --fn-kN"
+                };
+                CreepError::Config {
+                    source_name: flags.into(),
+                    message: e.to_string(),
+                }
+            })?;
+        }
         Ok(cfg)
     }
 

@@ -63,13 +63,13 @@ pub fn compare(
             cfg.preset
         )
         .map_err(io)?;
-        // no row at c_x >= 1 %: say so instead of printing NaN
-        let ge_1pct = if c.cv_rmse_pct_cx_ge_1pct.is_finite() {
-            format!("{:.2} % for c_x >= 1 %", c.cv_rmse_pct_cx_ge_1pct)
-        } else {
-            "no row at c_x >= 1 %".to_string()
-        };
-        writeln!(w, "CV(RMSE) = {:.2} % overall, {ge_1pct}", c.cv_rmse_pct).map_err(io)?;
+        writeln!(
+            w,
+            "CV(RMSE) = {:.2} % overall, {}",
+            c.cv_rmse_pct,
+            ge_1pct_text(c.cv_rmse_pct_cx_ge_1pct, "c_x >= 1 %")
+        )
+        .map_err(io)?;
         writeln!(
             w,
             "{:<10} {:<16} {:>5} {:>12} {:>14}",
@@ -87,6 +87,16 @@ pub fn compare(
         write_warnings(w, &warnings)?;
     }
     Ok(())
+}
+
+/// "X % for `what`" (the CV(RMSE) of the rows at c_x >= 1 %), or "no row at `what`" where
+/// there is none (the statistic is NaN then): no "NaN %" in a report.
+fn ge_1pct_text(cv: f64, what: &str) -> String {
+    if cv.is_finite() {
+        format!("{cv:.2} % for {what}")
+    } else {
+        format!("no row at {what}")
+    }
 }
 
 /// The model's warnings for the rows, each once with its rows counted per series (nothing
@@ -488,7 +498,11 @@ fn report_column(
         cfg.model.name(),
         esc(&format!("{:?}", cfg.effects.to_vec()))
     );
-    h += &format!("<p class=big>CV(RMSE) = <b>{:.2} %</b> overall, {:.2} % for c<sub>x</sub> &ge; 1 % (seed Eq. 2.9)</p>", c.cv_rmse_pct, c.cv_rmse_pct_cx_ge_1pct);
+    h += &format!(
+        "<p class=big>CV(RMSE) = <b>{:.2} %</b> overall, {} (seed Eq. 2.9)</p>",
+        c.cv_rmse_pct,
+        ge_1pct_text(c.cv_rmse_pct_cx_ge_1pct, "c<sub>x</sub> &ge; 1 %")
+    );
     for wn in &warnings {
         let per: Vec<String> = wn
             .per_series

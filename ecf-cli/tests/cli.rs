@@ -579,11 +579,26 @@ fn inputs_that_gave_nan_or_inf_are_errors() {
             err.contains("--a-mm/--b-mm") && err.contains("contact semi-axis a (m)"),
             "{err}"
         );
-        assert!(err.contains("[0.001, 10000] mm"), "{err}");
+        assert!(err.contains("[1e-6, 10000] mm"), "{err}");
     }
     // numbers in exponent form, not 300 digits
     assert!(huge.2.contains("= 1e297"), "{}", huge.2);
     assert!(huge.2.len() < 400, "{}", huge.2);
+    // a small load above lift-off has a usable patch, even a line contact's (half-width
+    // ~ sqrt(F_N): 0.37 um at 10 mN), and a load below lift-off is lift-off, not an error
+    for fn_kn in ["1e-5", "1e-12"] {
+        let (code, out, err) = ecf(&[
+            "curve",
+            "--preset",
+            "twin_disc",
+            "--fn-kN",
+            fn_kn,
+            "--cx",
+            "0.01",
+        ]);
+        assert_eq!(code, 0, "F_N = {fn_kn} kN: {err}");
+        assert!(!out.contains("NaN"), "{out}");
+    }
 
     // a formula reading a data column: a NaN column value is refused where it is parsed; a
     // finite value that drives an output to inf is refused by the output check

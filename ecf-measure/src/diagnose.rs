@@ -234,7 +234,7 @@ pub(crate) fn heldout(
         let fitted = if free.is_empty() || train.rows.len() <= free.len() {
             cfg.clone()
         } else {
-            fit_params_with(cfg, &train, free, threads, opts, &|_| {})?.config
+            crate::fit::fitted_or_kept(cfg, &train, free, threads, opts)?
         };
         let p = predict_with(&fitted, &test, threads, opts.memo)?;
         meas.extend(test.rows.iter().map(|r| r.f));

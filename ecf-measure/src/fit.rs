@@ -520,7 +520,24 @@ pub struct FitOptions<'a> {
     pub tolerance: Option<f64>,
 }
 
-/// Like [`fit_params`], with options.
+/// The configuration fitted to a training fold, or `cfg` itself where the fit fails (no
+/// start improves on the given values, or the fold's CV(RMSE) is not finite): a held-out
+/// score then scores the values as given on that fold instead of ending the whole run.
+pub fn fitted_or_kept(
+    cfg: &Config,
+    data: &Dataset,
+    free: &[FreeParam],
+    threads: usize,
+    opts: &FitOptions,
+) -> Result<Config> {
+    match fit_params_with(cfg, data, free, threads, opts, &|_| {}) {
+        Ok(r) => Ok(r.config),
+        Err(CreepError::Fit(_)) => Ok(cfg.clone()),
+        Err(e) => Err(e),
+    }
+}
+
+/// [`fit_params`] with options.
 pub fn fit_params_with(
     cfg: &Config,
     data: &Dataset,

@@ -262,7 +262,7 @@ pub(crate) fn search(
         let c = if base_free.is_empty() || train.rows.len() <= base_free.len() + 1 {
             cfg.clone()
         } else {
-            fit_params_with(cfg, &train, base_free, threads, opts, &|_| {})?.config
+            crate::fit::fitted_or_kept(cfg, &train, base_free, threads, opts)?
         };
         folds.push((train, test, c));
     }
@@ -282,7 +282,7 @@ pub(crate) fn search(
                 effect: c.modifiers.len() - 1,
                 param: 0,
             }];
-            let fitted = fit_params_with(&c, train, &k, threads, &screen_opts, &|_| {})?.config;
+            let fitted = crate::fit::fitted_or_kept(&c, train, &k, threads, &screen_opts)?;
             let p = predict_with(&fitted, test, threads, None)?;
             meas.extend(test.rows.iter().map(|r| r.f));
             model.extend(p.iter().map(|p| p.f));
