@@ -1,4 +1,4 @@
-//! A serialized FMU state of format version 4 (written on branch issue-27 from main at e5dece1, before parameters and effects were stored by name) loads, keeps what the importer had set and continues as a fresh run does.
+//! A serialized FMU state of format version 4 (written on branch issue-27 from main at e5dece1, before parameters and effects were stored by name) loads, keeps what the importer had set and continues as a fresh run of this build does (within the temperature solve's tolerance change since).
 
 use ecf_contact::instance::{Instance, Status};
 use ecf_contact::state;
@@ -48,7 +48,7 @@ fn run() -> Instance {
 }
 
 #[test]
-fn a_version_4_state_loads_and_continues_bit_for_bit() {
+fn a_version_4_state_loads_and_continues() {
     assert_eq!(u32::from_le_bytes(STATE_V4[8..12].try_into().unwrap()), 4);
     let snap = state::deserialize(STATE_V4).expect("the version 4 state loads");
     let mut now = run();
@@ -75,7 +75,13 @@ fn a_version_4_state_loads_and_continues_bit_for_bit() {
         for &o in &outputs {
             let a = now.get_real(o).expect("output");
             let b = old.get_real(o).expect("output");
-            assert_eq!(a.to_bits(), b.to_bits(), "step {k}: vr {o}: {a} vs {b}");
+            // the fixture was written before the temperature solve's tolerance went from
+            // 1e-4 to 1e-10 (issue 25); a value read into the wrong place would be off by
+            // far more than 1e-5
+            assert!(
+                (a - b).abs() <= 1e-5 * a.abs().max(b.abs()) + 1e-9,
+                "step {k}: vr {o}: {a} vs {b}"
+            );
         }
     }
     // written again in the current format, it reads back to the same bytes
