@@ -1,8 +1,8 @@
 //! Verdicts that know the noise (issue 26, item 2): the best model is said to be at the noise level when nothing is missing, and N times above it when an effect outside the catalogue is.
 use crate::common::{preset, with_grid};
-use creep_core::{Config, Inputs, Model};
+use creep_core::Config;
 use ecf_measure::diagnose::diagnose;
-use ecf_measure::measure::{Dataset, Defaults};
+use ecf_measure::measure::Dataset;
 
 fn noise(seed: &mut u64, sd: f64) -> f64 {
     let mut s = 0.0;
@@ -17,25 +17,9 @@ fn noise(seed: &mut u64, sd: f64) -> f64 {
 
 /// Curves of `truth` at 5, 10 and 20 m/s, 14 creepages each, noise of `sd`.
 fn file(truth: &Config, sd: f64) -> Dataset {
-    let mut csv = String::from("cx,f,series,v_mps,fn_kN\n");
     let mut seed = 7;
-    for v in [5.0, 10.0, 20.0] {
-        let mut m = Model::new(truth).unwrap();
-        for i in 0..14 {
-            let cx = 0.0015 * 1.45f64.powi(i);
-            let f = m
-                .steady(&Inputs {
-                    cx,
-                    v,
-                    fn_n: 110e3,
-                    ..Inputs::default()
-                })
-                .unwrap()
-                .f;
-            csv.push_str(&format!("{cx},{},v{v},{v},110\n", f + noise(&mut seed, sd)));
-        }
-    }
-    Dataset::from_csv_str(&csv, "noise.csv", &Defaults::default()).unwrap()
+    let n = move || noise(&mut seed, sd);
+    crate::curves::steady_curves(truth, &[5.0, 10.0, 20.0], 14, 0.0015, 1.45, "noise.csv", n)
 }
 
 /// `cfg` with both strengths scaled by 1/(1 + k (v - 5)/15): a fall with speed no catalogue

@@ -1,33 +1,14 @@
 //! Fits that never end worse than they started (issue 26, item 3): starts on a bound move off it when the data pull inward, stay at it (flagged) when the data push outward, bounds far from the solution do not change where a fit ends, and a fit ending worse than its start fails.
 use crate::common::{preset, with_grid};
-use creep_core::{Config, Inputs, Model};
+use creep_core::Config;
 use ecf_measure::fit::{fit_generic, fit_params, FreeParam, ParamStatus};
-use ecf_measure::measure::{Dataset, Defaults};
+use ecf_measure::measure::Dataset;
 
 /// Steady curves of `truth` at 5, 12 and 20 m/s, 10 creepages each, plus deterministic noise
 /// of amplitude `sd`.
 fn file(truth: &Config, sd: f64) -> Dataset {
-    let mut csv = String::from("cx,f,series,v_mps,fn_kN\n");
-    let mut k = 0;
-    for v in [5.0, 12.0, 20.0] {
-        let mut m = Model::new(truth).unwrap();
-        for i in 0..10 {
-            let cx = 0.001 * 1.7f64.powi(i);
-            let f = m
-                .steady(&Inputs {
-                    cx,
-                    v,
-                    fn_n: 110e3,
-                    ..Inputs::default()
-                })
-                .unwrap()
-                .f;
-            k += 1;
-            let noise = sd * ((k * 7919 % 13) as f64 / 6.0 - 1.0);
-            csv.push_str(&format!("{cx},{},v{v},{v},110\n", f + noise));
-        }
-    }
-    Dataset::from_csv_str(&csv, "bounds.csv", &Defaults::default()).unwrap()
+    let n = crate::curves::comb_noise(sd);
+    crate::curves::steady_curves(truth, &[5.0, 12.0, 20.0], 10, 0.001, 1.7, "bounds.csv", n)
 }
 
 /// `cfg` with the layer's strengths falling with speed, tau_c x 1/(1 + k (v - 5)/15), k starting

@@ -2,35 +2,15 @@
 //! at-bound and non-identifiable parameters flagged separately, and failed fits reported as
 //! failures (issue 12, "Fitting").
 use crate::common::{preset, with_grid};
-use creep_core::{Config, Inputs, Model};
+use creep_core::Config;
 use ecf_measure::fit::{fit_params, FreeParam, ParamStatus};
 use ecf_measure::measure::{Dataset, Defaults};
 
 /// Steady curves of `truth` at 5 and 20 m/s, 12 creepages each, plus deterministic noise of
 /// amplitude `sd`.
 fn file(truth: &Config, sd: f64) -> Dataset {
-    let mut csv = String::from("cx,f,series,v_mps,fn_kN\n");
-    let mut k = 0;
-    for v in [5.0, 20.0] {
-        let mut m = Model::new(truth).unwrap();
-        for i in 0..12 {
-            let cx = 0.001 * 1.6f64.powi(i);
-            let f = m
-                .steady(&Inputs {
-                    cx,
-                    v,
-                    fn_n: 110e3,
-                    ..Inputs::default()
-                })
-                .unwrap()
-                .f;
-            k += 1;
-            let noise = sd * ((k * 7919 % 13) as f64 / 6.0 - 1.0);
-            let f = f + noise;
-            csv.push_str(&format!("{cx},{f},v{v},{v},110\n"));
-        }
-    }
-    Dataset::from_csv_str(&csv, "known.csv", &Defaults::default()).unwrap()
+    let n = crate::curves::comb_noise(sd);
+    crate::curves::steady_curves(truth, &[5.0, 20.0], 12, 0.001, 1.6, "known.csv", n)
 }
 
 /// `cfg` with a formula effect tau_c2 x (1 + s (v - 10)/10), s in [-0.5, max].

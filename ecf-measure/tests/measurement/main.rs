@@ -6,6 +6,7 @@
 #[path = "../../../creep-core/tests/physics/common/mod.rs"]
 mod common;
 
+mod curves;
 mod custom_effect;
 mod diagnose_hidden_effects;
 mod diagnose_memo;
