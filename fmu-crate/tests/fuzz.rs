@@ -16,21 +16,12 @@ use fmi_sys::fmi2 as f;
 use std::ffi::CString;
 use std::time::{Duration, Instant};
 
-struct Rng(u64);
+#[path = "fuzz_rng/mod.rs"]
+mod fuzz_rng;
+use fuzz_rng::Rng;
+
+/// Real values for the setters: NaN, infinities, extremes, zero and ordinary magnitudes.
 impl Rng {
-    fn next(&mut self) -> u64 {
-        // xorshift64*
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
     fn real(&mut self) -> f64 {
         match self.below(12) {
             0 => f64::NAN,
