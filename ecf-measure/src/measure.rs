@@ -1121,12 +1121,11 @@ pub fn read_hpt(text: &str, src: &str) -> Result<Vec<HptRow>> {
             }
             // a pressure-shear test's range (far beyond any steel's strength, and short of
             // where the squares of a CV(RMSE) would overflow)
-            let max = HPT_MAX
+            let (max, unit) = HPT_MAX
                 .iter()
                 .find(|(c, _, _)| *c == n)
-                .map_or(f64::INFINITY, |m| m.1);
+                .map_or((f64::INFINITY, ""), |m| (m.1, m.2));
             if x > max {
-                let unit = HPT_MAX.iter().find(|(c, _, _)| *c == n).map_or("", |m| m.2);
                 return Err(err(
                     src,
                     line,
