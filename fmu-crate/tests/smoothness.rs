@@ -145,3 +145,27 @@ fn whole_run_in_fn_has_kinks_of_the_lattice_phase() {
     // 1e-6, 1e-7, 1e-8: differentiable there
     agree("FN", &d, &[0], 0.01, 2);
 }
+
+/// No direct feedthrough at a communication point: the outputs are those of the completed
+/// step, so an input set afterwards changes nothing until the next step (the reason
+/// fmi2GetDirectionalDerivative, outputs with respect to inputs at the current instant,
+/// would be identically zero here; docs/fmu.md, "Derivatives and Jacobians").
+#[test]
+fn outputs_at_a_communication_point_do_not_depend_on_inputs_set_since() {
+    let mut f = start("feedthrough", None);
+    assert_eq!(f.step(DT), OK);
+    let before = common::OUTPUT_NAMES.map(|n| f.get(n).to_bits());
+    for (n, x) in [
+        ("cx", 0.02),
+        ("cy", -0.003),
+        ("spin", 0.4),
+        ("FN", 90e3),
+        ("v", 12.0),
+    ] {
+        assert_eq!(f.set_real(n, x), OK, "{n}");
+    }
+    assert_eq!(common::OUTPUT_NAMES.map(|n| f.get(n).to_bits()), before);
+    // the next step does see them
+    assert_eq!(f.step(DT), OK);
+    assert_ne!(f.get("Fx").to_bits(), before[0]);
+}
