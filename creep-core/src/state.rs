@@ -70,7 +70,8 @@ fn put_outputs(w: &mut W, o: &Outputs) {
 
 /// Reads values stored by name (version 3 on) or, in versions 1 and 2, `legacy` values
 /// without names in the fixed order of the value references `vrs`. `set(name, value)` is
-/// false for a name this build does not know (`what`: "an input"), which is refused.
+/// false for a name this build does not know (`what`: "an input"), which is refused, as is a
+/// name stored twice.
 fn get_named(
     r: &mut R,
     version: u32,
@@ -90,9 +91,16 @@ fn get_named(
         return Ok(());
     }
     let n = r.u()?;
+    let mut seen = std::collections::HashSet::new();
     for _ in 0..n {
         let name = r.s()?;
         let x = r.f()?;
+        // a name stored twice is a corrupted state, not "the last one wins"
+        if !seen.insert(name.clone()) {
+            return Err(CreepError::State(format!(
+                "the state has {what} '{name}' twice"
+            )));
+        }
         if !set(&name, x) {
             return Err(CreepError::State(format!(
                 "the state has {what} '{name}' that this build does not know"
@@ -414,6 +422,40 @@ mod tests {
         odd[name_at] = b'#';
         let e = fresh.load_state(&odd).unwrap_err().to_string();
         assert!(e.contains(&format!("'#{}'", &last.name[1..])), "{e}");
+    }
+
+    /// An input or output stored twice is refused with its name (not "the last one wins").
+    #[test]
+    fn a_name_stored_twice_is_refused() {
+        let cfg = Config::preset("polach").unwrap();
+        let mut m = Model::new(&cfg).unwrap();
+        m.steady(&Inputs {
+            cx: 0.01,
+            ..Inputs::default()
+        })
+        .unwrap();
+        let bytes = m.save_state();
+        let n = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        let inputs_at = 16 + n + 8;
+        for (count_at, first, what) in [
+            (inputs_at, INPUTS[0].name, "an input"),
+            (outputs_at(&bytes), OUTPUTS[0].name, "an output"),
+        ] {
+            // the first entry a second time, the count one more
+            let entry = 4 + first.len() + 8;
+            let at = count_at + 4;
+            let mut twice = bytes[..at + entry].to_vec();
+            twice.extend_from_slice(&bytes[at..]);
+            let k = u32::from_le_bytes(bytes[count_at..at].try_into().unwrap());
+            twice[count_at..at].copy_from_slice(&(k + 1).to_le_bytes());
+            let e = Model::new(&cfg)
+                .unwrap()
+                .load_state(&twice)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(&format!("{what} '{first}' twice")), "{e}");
+        }
+        assert!(Model::new(&cfg).unwrap().load_state(&bytes).is_ok());
     }
 
     #[test]

@@ -933,7 +933,7 @@ unsupported! {
         _nKnown: usize,
         _dvKnown: *const f::fmi2Real,
         _dvUnknown: *mut f::fmi2Real
-    ) => "providesDirectionalDerivative = false";
+    ) => "providesDirectionalDerivative = false: at a communication point the outputs are those of the completed step and do not depend on inputs set since; for the Jacobian of a step take finite differences with fmi2GetFMUstate/fmi2SetFMUstate, see docs/fmu.md";
     fmi2SetRealInputDerivatives(
         _vr: *const f::fmi2ValueReference,
         _nvr: usize,

@@ -519,49 +519,68 @@ impl Instance {
     }
 
     /// fmi2DoStep: advances the contact by `h` seconds with the inputs held constant.
+    ///
+    /// A call refused for the call sequence (the instance is not in StepComplete) leaves the
+    /// mode as it is. Any other fmi2Error (an argument that is refused, a step of the model
+    /// that fails or gives non-finite outputs) puts the instance in the error state, as the
+    /// FMI 2.0 standard says of fmi2Error ("the simulation cannot be continued with this FMU
+    /// instance"; the Reference FMUs go to their terminal state on every error of fmi2DoStep):
+    /// only fmi2Get* (inputs and parameters; outputs are refused, the last step did not
+    /// complete), fmi2GetStatus and fmi2GetRealStatus for diagnosis, fmi2SetFMUstate of an
+    /// earlier state, fmi2Reset and fmi2FreeInstance are accepted there.
     pub fn do_step(&mut self, t: f64, h: f64) -> Status {
         if let Err(s) = self.check_phase("fmi2DoStep", Call::DoStep) {
             return s;
         }
+        match self.try_step(t, h) {
+            Ok(()) => {
+                self.time = t + h;
+                self.drain_model_warnings("fmi2DoStep")
+            }
+            Err(e) => {
+                self.phase = Phase::Error;
+                self.error(format!(
+                    "fmi2DoStep: {e}; the instance is in the error state (call fmi2Reset, or fmi2SetFMUstate to an earlier state)"
+                ))
+            }
+        }
+    }
+
+    /// The work of fmi2DoStep in StepComplete; an error is the message (without the function's
+    /// name).
+    fn try_step(&mut self, t: f64, h: f64) -> Result<(), String> {
         if !(h.is_finite() && h >= 0.0) {
-            return self.error(format!(
-                "fmi2DoStep: communicationStepSize = {h} must be finite and >= 0 s"
+            return Err(format!(
+                "communicationStepSize = {h} must be finite and >= 0 s"
             ));
         }
         let tol = 1e-9 * self.time.abs().max(1.0);
         if !t.is_finite() || (t - self.time).abs() > tol {
-            return self.error(format!(
-                "fmi2DoStep: currentCommunicationPoint = {t} s, but the FMU is at t = {} s (set an FMU state to go back in time)",
+            return Err(format!(
+                "currentCommunicationPoint = {t} s, but the FMU is at t = {} s (set an FMU state to go back in time)",
                 self.time
             ));
         }
         let inputs = core_inputs(&self.inputs);
         let extra = match self.model.as_ref().map(|m| self.extras(m.config())) {
-            Some(Ok(x)) => x,
-            Some(Err(e)) => return self.error(format!("fmi2DoStep: {e}")),
+            Some(x) => x?,
             None => None,
         };
         let Some(model) = self.model.as_mut() else {
-            return self.error("fmi2DoStep: no model (not initialized)".into());
+            return Err("no model (not initialized)".into());
         };
         if let Some(x) = &extra {
-            if let Err(e) = model.set_extra(x) {
-                return self.error(format!("fmi2DoStep: {e}"));
-            }
+            model.set_extra(x).map_err(|e| e.to_string())?;
         }
-        if let Err(e) = model.step(h, &inputs) {
-            return self.error(format!(
-                "fmi2DoStep: step of {h} s from t = {t} s failed: {e}"
-            ));
-        }
+        model
+            .step(h, &inputs)
+            .map_err(|e| format!("step of {h} s from t = {t} s failed: {e}"))?;
         if let Some(bad) = non_finite(&model.outputs()) {
-            self.phase = Phase::Error;
-            return self.error(format!(
-                "fmi2DoStep: the step of {h} s from t = {t} s gave non-finite outputs ({bad}); the instance is in the error state (fmi2Reset, or fmi2SetFMUstate to an earlier state)"
+            return Err(format!(
+                "the step of {h} s from t = {t} s gave non-finite outputs ({bad})"
             ));
         }
-        self.time = t + h;
-        self.drain_model_warnings("fmi2DoStep")
+        Ok(())
     }
 
     fn var(&mut self, func: &str, vr: u32, kind: Kind) -> Result<Var, Status> {

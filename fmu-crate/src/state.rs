@@ -46,6 +46,20 @@ const V2_GEO: [&str; 5] = ["a_ref", "b_ref", "FN_ref", "Rx", "Ry"];
 type W = Writer;
 type R<'a> = Reader<'a>;
 
+/// Refuses a name that a list stored by name holds twice (a reader that let the last one win
+/// would load a corrupted state silently); `what` is "an input", "the parameter", ...
+fn once(
+    seen: &mut std::collections::HashSet<String>,
+    what: &str,
+    name: &str,
+) -> Result<(), String> {
+    if seen.insert(name.to_string()) {
+        Ok(())
+    } else {
+        Err(format!("the state has {what} '{name}' twice"))
+    }
+}
+
 /// Effect of a value reference (versions up to 4 stored effects by `vr - 50`).
 fn effect_of_vr(vr: u32) -> Option<Effect> {
     effects::CATALOGUE
@@ -200,12 +214,18 @@ fn get_config(r: &mut R, version: u32) -> Result<Config, String> {
 /// The effects and parameters of a configuration, stored by name (version 5 on).
 fn get_config_named(r: &mut R) -> Result<(EffectSet, Params), String> {
     let mut effects = EffectSet::empty();
+    let mut seen = std::collections::HashSet::new();
     for _ in 0..r.u32()? {
-        effects.insert(effect_named(&r.str()?)?);
+        let name = r.str()?;
+        once(&mut seen, "the configuration's effect", &name)?;
+        effects.insert(effect_named(&name)?);
     }
     let mut p = Params::default();
+    let mut seen = std::collections::HashSet::new();
     for _ in 0..r.u32()? {
-        let id = param_named(&r.str()?)?;
+        let name = r.str()?;
+        once(&mut seen, "the configuration's parameter", &name)?;
+        let id = param_named(&name)?;
         p.set(id, r.f64()?).map_err(|e| e.to_string())?;
     }
     Ok((effects, p))
@@ -328,11 +348,13 @@ fn read_named(
     } else {
         r.u32()? as usize
     };
+    let mut seen = std::collections::HashSet::new();
     for k in 0..n {
         let name = match v2.get(k) {
             Some(n) if version == 2 => n.to_string(),
             _ => r.str()?,
         };
+        once(&mut seen, what, &name)?;
         let i = names.iter().position(|n| *n == name).ok_or_else(|| {
             format!("the state has {what} '{name}' that this build does not know")
         })?;
@@ -369,7 +391,10 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
         columns: r.str()?,
         ..Settings::default()
     };
+    // set parameters and effects: by name from version 5, by index before; either way an
+    // entry that comes twice is refused
     let n = r.u32()?;
+    let mut seen = std::collections::HashSet::new();
     for _ in 0..n {
         let p = if v >= 5 {
             param_named(&r.str()?)?
@@ -377,9 +402,11 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
             let i = r.u32()?;
             param_of_vr(100 + i).ok_or_else(|| format!("bad parameter index {i}"))?
         };
+        once(&mut seen, "the set parameter", params::spec(p).name)?;
         st.params.insert(p, r.f64()?);
     }
     let n = r.u32()?;
+    let mut seen = std::collections::HashSet::new();
     for _ in 0..n {
         let e = if v >= 5 {
             effect_named(&r.str()?)?
@@ -387,6 +414,7 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
             let i = r.u8()?;
             effect_of_vr(50 + i as u32).ok_or_else(|| format!("bad effect index {i}"))?
         };
+        once(&mut seen, "the set effect", effects::info(e).name)?;
         st.effects.insert(e, r.bool()?);
     }
     let nx = r.u32()? as usize;
@@ -618,5 +646,99 @@ mod tests {
         assert_eq!(cfg.params.get(last.id), last.default);
         assert_eq!(cfg.params.get(P::Tc10), 0.35);
         assert!(cfg.effects.has(Effect::ElasticUnloading));
+    }
+
+    /// A list stored by name that holds a name twice is refused with that name (a reader
+    /// where the last one wins would load such a corrupted state silently).
+    #[test]
+    fn a_name_stored_twice_is_refused() {
+        let mut i = Instance::new("t", None, false);
+        let vr = |n: &str| {
+            crate::vars::table()
+                .iter()
+                .find(|v| v.name == n)
+                .unwrap()
+                .vr
+        };
+        assert_eq!(i.set_real(vr("tau_c1_0_GPa"), 0.35), Status::Ok);
+        assert_eq!(
+            i.set_boolean(vr("effect_elastic_unloading"), true),
+            Status::Ok
+        );
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        let bytes = serialize(&i.get_state());
+        assert!(deserialize(&bytes).is_ok());
+        let name = |n: &str| {
+            let mut w = W::new();
+            w.str(n);
+            w.into_inner()
+        };
+        let find = |n: &str| {
+            let e = name(n);
+            bytes
+                .windows(e.len())
+                .position(|w| w == e.as_slice())
+                .unwrap_or_else(|| panic!("{n} in the state"))
+        };
+        // the entry at `at` (`len` bytes) a second time, the count at `count_at` one more
+        let twice = |at: usize, len: usize, count_at: usize| {
+            let mut b = bytes[..at + len].to_vec();
+            b.extend_from_slice(&bytes[at..]);
+            let n = u32::from_le_bytes(bytes[count_at..count_at + 4].try_into().unwrap());
+            b[count_at..count_at + 4].copy_from_slice(&(n + 1).to_le_bytes());
+            b
+        };
+        let first_input = In::ALL[0].name();
+        let first_param = params::SPECS[0].name;
+        let at_param = {
+            // the configuration's parameter list (the set parameters come first)
+            let e = name(first_param);
+            bytes
+                .windows(e.len())
+                .rposition(|w| w == e.as_slice())
+                .expect("the first parameter in the configuration")
+        };
+        let cases = [
+            // the inputs: their count after magic, version, time
+            (
+                twice(24, name(&first_input).len() + 8, 20),
+                format!("an input '{first_input}' twice"),
+            ),
+            // the set parameters, one of them: its count just before it
+            (
+                twice(
+                    find("tau_c1_0_GPa"),
+                    name("tau_c1_0_GPa").len() + 8,
+                    find("tau_c1_0_GPa") - 4,
+                ),
+                "the set parameter 'tau_c1_0_GPa' twice".to_string(),
+            ),
+            (
+                twice(
+                    find("elastic_unloading"),
+                    name("elastic_unloading").len() + 1,
+                    find("elastic_unloading") - 4,
+                ),
+                "the set effect 'elastic_unloading' twice".to_string(),
+            ),
+            // the geometry values: the first of them, its count just before it
+            (
+                twice(
+                    find(Geo::ALL[0].name()),
+                    name(Geo::ALL[0].name()).len() + 9,
+                    find(Geo::ALL[0].name()) - 4,
+                ),
+                format!("a geometry parameter '{}' twice", Geo::ALL[0].name()),
+            ),
+            (
+                twice(at_param, name(first_param).len() + 8, at_param - 4),
+                format!("the configuration's parameter '{first_param}' twice"),
+            ),
+        ];
+        for (b, want) in cases {
+            let e = deserialize(&b).expect_err(&want);
+            assert!(e.contains(&want), "{want}: {e}");
+        }
     }
 }

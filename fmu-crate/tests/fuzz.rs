@@ -11,7 +11,7 @@
 mod common;
 use common::{callbacks, ERROR, OK};
 use ecf_contact::ffi::*;
-use ecf_contact::vars::{self, Causality, Kind};
+use ecf_contact::vars::{Causality, Kind};
 use fmi_sys::fmi2 as f;
 use std::ffi::CString;
 use std::time::{Duration, Instant};
@@ -67,14 +67,7 @@ fn random_legal_call_sequences_never_crash_hang_or_leak() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(0x5EED_ECF1);
     let mut rng = Rng(seed | 1);
-    let table = vars::table();
-    let of = |k: Kind, c: &[Causality]| -> Vec<vars::Var> {
-        table
-            .iter()
-            .filter(|v| v.kind == k && c.contains(&v.causality))
-            .cloned()
-            .collect()
-    };
+    let of = common::vars_of;
     let inputs = of(Kind::Real, &[Causality::Input]);
     let real_params = of(Kind::Real, &[Causality::Parameter]);
     let outputs = of(Kind::Real, &[Causality::Output]);
@@ -259,7 +252,7 @@ fn random_legal_call_sequences_never_crash_hang_or_leak() {
                         let probe = fmi2DoStep(c, t, 0.0, 0);
                         ph = if probe <= f::fmi2Status_fmi2Warning {
                             Ph::Step
-                        } else if fmi2GetReal(c, &vars_vr("cx"), 1, &mut x) == OK {
+                        } else if fmi2GetReal(c, &common::vr("cx"), 1, &mut x) == OK {
                             Ph::Init
                         } else {
                             ph
@@ -328,8 +321,4 @@ fn random_legal_call_sequences_never_crash_hang_or_leak() {
         rss_end < rss_early + 64 * 1024,
         "resident memory grew from {rss_early} to {rss_end} KiB"
     );
-}
-
-fn vars_vr(name: &str) -> u32 {
-    common::vr(name)
 }

@@ -118,22 +118,7 @@ fn param_value(rng: &mut Rng, v: &vars::Var) -> f64 {
 /// fractions that sum to 1 or are all 0. Returns false where an output is not readable.
 fn check_outputs(c: f::fmi2Component, stepped: bool, what: &str) -> bool {
     let mut o = [0.0f64; 13];
-    let names = [
-        "Fx",
-        "Fy",
-        "Mz",
-        "f",
-        "T_max",
-        "T_mean",
-        "P_fric",
-        "frac_elastic",
-        "frac_plastic",
-        "frac_sliding",
-        "a",
-        "b",
-        "p0",
-    ];
-    for (i, n) in names.iter().enumerate() {
+    for (i, n) in common::OUTPUT_NAMES.iter().enumerate() {
         let mut x = f64::NAN;
         let st = unsafe { fmi2GetReal(c, &common::vr(n), 1, &mut x) };
         assert!(st <= ERROR, "{what}: get {n}: status {st}");
@@ -281,14 +266,7 @@ fn check_state(a: &mut Fmu, mode: &str, stepping: bool, rng: &mut Rng, n: &mut C
 fn run_case(seed: u64) -> Counts {
     let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let mut n = Counts::default();
-    let table = vars::table();
-    let of = |k: Kind, c: Causality| -> Vec<vars::Var> {
-        table
-            .iter()
-            .filter(|v| v.kind == k && v.causality == c)
-            .cloned()
-            .collect()
-    };
+    let of = |k: Kind, c: Causality| common::vars_of(k, &[c]);
     let (params, bools) = (
         of(Kind::Real, Causality::Parameter),
         of(Kind::Boolean, Causality::Parameter),

@@ -165,14 +165,6 @@ fn wrong_call_sequence_unknown_references_and_fixed_parameters() {
         "{:?}",
         f.messages()
     );
-    // a time that does not match
-    assert_eq!(unsafe { fmi2DoStep(f.c, 5.0, 1e-3, 1) }, ERROR);
-    assert!(
-        has(&f, log::Level::Error, &["currentCommunicationPoint = 5"]),
-        "{:?}",
-        f.messages()
-    );
-    assert_eq!(unsafe { fmi2DoStep(f.c, 0.0, f64::NAN, 1) }, ERROR);
     // unsupported functions answer with an error and a message
     assert_eq!(unsafe { fmi2CancelStep(f.c) }, ERROR);
     assert_eq!(
@@ -189,6 +181,23 @@ fn wrong_call_sequence_unknown_references_and_fixed_parameters() {
         f.messages()
     );
     // the instance still works after all of this
+    assert_eq!(f.step(1e-3), OK);
+    // a time that does not match: an error of fmi2DoStep, so the error state (see
+    // a_failed_step_leaves_only_diagnosis_restore_reset_and_free)
+    assert_eq!(unsafe { fmi2DoStep(f.c, 5.0, 1e-3, 1) }, ERROR);
+    assert!(
+        has(
+            &f,
+            log::Level::Error,
+            &["currentCommunicationPoint = 5", "error state"]
+        ),
+        "{:?}",
+        f.messages()
+    );
+    assert_eq!(unsafe { fmi2Terminate(f.c) }, ERROR);
+    assert_eq!(unsafe { fmi2Reset(f.c) }, OK);
+    f.time = 0.0;
+    assert_eq!(f.init(), OK);
     assert_eq!(f.step(1e-3), OK);
     assert_eq!(unsafe { fmi2Terminate(f.c) }, OK);
     assert_eq!(f.step(1e-3), ERROR);
@@ -455,4 +464,103 @@ fn the_normal_force_message_says_what_is_done_with_a_negative_force() {
     assert!(f.set_real("FN", -5.0) <= WARNING);
     assert!(f.step(1e-3) <= WARNING);
     assert_eq!(f.get("Fx"), 0.0);
+}
+
+/// Each way fmi2DoStep can fail in StepComplete: the model refusing the step (a step over
+/// 1000 s), a step size that is not finite or negative, a communication point that does not
+/// match. Each puts the instance in the error state (FMI 2.0, fmi2Error: "the simulation
+/// cannot be continued with this FMU instance"), where only diagnosis (fmi2Get* of inputs
+/// and parameters, fmi2GetStatus, fmi2GetRealStatus), fmi2SetFMUstate of an earlier state,
+/// fmi2Reset and fmi2FreeInstance are accepted; both ways back continue as a fresh run does.
+#[test]
+fn a_failed_step_leaves_only_diagnosis_restore_reset_and_free() {
+    let cases: [(&str, f64, f64, &str); 4] = [
+        ("model", 0.0, 2000.0, "dt = 2000"),
+        ("nan", 0.0, f64::NAN, "communicationStepSize = NaN"),
+        ("negative", 0.0, -1e-3, "communicationStepSize = -0.001"),
+        ("time", 5.0, 1e-3, "currentCommunicationPoint = 5"),
+    ];
+    // the reference: two steps of 1 ms after one step of 1 ms
+    let mut r = ready("failed-step-reference");
+    assert_eq!(r.step(1e-3), OK);
+    assert_eq!(r.step(1e-3), OK);
+    let fx_reference = r.get("Fx");
+    for (what, dt_point, h, words) in cases {
+        let name = format!("failed-step-{what}");
+        let mut f = ready(&name);
+        assert_eq!(f.step(1e-3), OK);
+        let saved = f.get_state();
+        let t_before = f.time;
+        let st = unsafe { fmi2DoStep(f.c, f.time + dt_point, h, 1) };
+        assert_eq!(st, ERROR, "{what}");
+        assert!(
+            has(&f, log::Level::Error, &["fmi2DoStep", words, "error state"]),
+            "{what}: {:?}",
+            f.messages()
+        );
+        // refused in the error state, with the mode named
+        let mut x = 0.0;
+        let mut s: f::fmi2FMUstate = std::ptr::null_mut();
+        unsafe {
+            assert_eq!(fmi2DoStep(f.c, t_before, 1e-3, 1), ERROR, "{what}: step");
+            assert!(
+                has(
+                    &f,
+                    log::Level::Error,
+                    &["fmi2DoStep: not allowed in state Error"]
+                ),
+                "{what}: {:?}",
+                f.messages()
+            );
+            assert_eq!(fmi2Terminate(f.c), ERROR, "{what}: terminate");
+            assert_eq!(fmi2SetupExperiment(f.c, 0, 0.0, 0.0, 0, 0.0), ERROR);
+            assert_eq!(fmi2EnterInitializationMode(f.c), ERROR, "{what}: enter");
+            assert_eq!(fmi2ExitInitializationMode(f.c), ERROR, "{what}: exit");
+            assert_eq!(fmi2GetFMUstate(f.c, &mut s), ERROR, "{what}: get state");
+            assert!(s.is_null());
+            // an output of a step that did not complete is not handed out
+            assert_eq!(fmi2GetReal(f.c, &vr("Fx"), 1, &mut x), ERROR, "{what}: Fx");
+        }
+        assert_eq!(f.set_real("cx", 0.02), ERROR, "{what}: set an input");
+        assert_eq!(f.set_int("nx", 20), ERROR, "{what}: set a parameter");
+        // diagnosis: inputs and parameters as they were, the status, the last good time
+        assert_eq!(f.get("cx"), 0.01, "{what}");
+        let mut nx = 0;
+        assert_eq!(unsafe { fmi2GetInteger(f.c, &vr("nx"), 1, &mut nx) }, OK);
+        assert_eq!(nx, 16, "{what}: nx");
+        let mut ds = OK;
+        let mut last = f64::NAN;
+        unsafe {
+            assert_eq!(
+                fmi2GetStatus(f.c, f::fmi2StatusKind_fmi2DoStepStatus, &mut ds),
+                OK
+            );
+            assert_eq!(
+                fmi2GetRealStatus(f.c, f::fmi2StatusKind_fmi2LastSuccessfulTime, &mut last),
+                OK
+            );
+        }
+        assert_eq!(ds, ERROR, "{what}: fmi2DoStepStatus");
+        assert_eq!(last, t_before, "{what}: last successful time");
+        // back by an earlier state: continues as if the failed step had not been called
+        f.set_state(saved);
+        assert_eq!(f.step(1e-3), OK, "{what}: step after the restore");
+        assert_eq!(f.get("Fx"), fx_reference, "{what}: restored run");
+        // fail again, then back by fmi2Reset and a new initialization
+        assert_eq!(unsafe { fmi2DoStep(f.c, f.time + dt_point, h, 1) }, ERROR);
+        assert_eq!(unsafe { fmi2Reset(f.c) }, OK, "{what}: reset");
+        f.time = 0.0;
+        assert_eq!(f.set_int("nx", 16), OK);
+        assert_eq!(f.set_int("ny", 5), OK);
+        f.inputs(0.01, 0.0, 0.0, 20.0, 110e3);
+        assert_eq!(f.init(), OK, "{what}: init after reset");
+        assert_eq!(f.step(1e-3), OK);
+        assert_eq!(f.step(1e-3), OK);
+        assert_eq!(f.get("Fx"), fx_reference, "{what}: run after the reset");
+        f.free_state(saved);
+        assert_eq!(unsafe { fmi2Terminate(f.c) }, OK);
+    }
+    let mut e = ready("failed-step-free");
+    assert_eq!(e.step(f64::NAN), ERROR);
+    drop(e); // fmi2FreeInstance in the error state
 }

@@ -1,5 +1,6 @@
 //! A second, independent importer: the rust-fmi `fmi` crate loads the packed .fmu (dist/ecf_contact.fmu from scripts/build-fmu.sh, or $ECF_FMU_PATH), steps it, and matches the core library.
 
+mod common;
 use creep_core::{Config, Grid, Inputs, Model};
 use fmi::fmi2::import::Fmi2Import;
 use fmi::fmi2::instance::{CoSimulation, Common};
@@ -42,21 +43,7 @@ fn rust_fmi_loads_steps_and_matches_the_core_library() {
     );
     let names = ["cx", "cy", "spin", "v", "FN", "T_bulk"];
     let vin: Vec<u32> = names.iter().map(|n| vr(&import, n)).collect();
-    let outs = [
-        "Fx",
-        "Fy",
-        "Mz",
-        "f",
-        "T_max",
-        "T_mean",
-        "P_fric",
-        "frac_elastic",
-        "frac_plastic",
-        "frac_sliding",
-        "a",
-        "b",
-        "p0",
-    ];
+    let outs = common::OUTPUT_NAMES;
     let vout: Vec<u32> = outs.iter().map(|n| vr(&import, n)).collect();
 
     let mut inst = import

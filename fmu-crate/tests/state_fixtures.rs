@@ -1,5 +1,7 @@
 //! A serialized FMU state of format version 4 (written on branch issue-27 from main at e5dece1, before parameters and effects were stored by name) loads, keeps what the importer had set and continues as a fresh run of this build does (within the temperature solve's tolerance change since).
 
+mod common;
+use common::vr;
 use ecf_contact::instance::{Instance, Status};
 use ecf_contact::state;
 use ecf_contact::vars;
@@ -7,14 +9,6 @@ use ecf_contact::vars;
 /// The state after [`run`] (grid 6 x 3, mu = 0.3, tau_c1_0_GPa = 0.35, elastic unloading on,
 /// geometry = 2 with Rx = 0.5), from `state::serialize` of that build.
 const STATE_V4: &[u8] = include_bytes!("data/state_v4.bin");
-
-fn vr(name: &str) -> u32 {
-    vars::table()
-        .iter()
-        .find(|v| v.name == name)
-        .map(|v| v.vr)
-        .expect(name)
-}
 
 fn set_up() -> Instance {
     let mut i = Instance::new("fixture", None, false);

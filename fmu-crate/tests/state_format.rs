@@ -1,14 +1,16 @@
 //! Serialized FMU states of format version 2 written by an earlier build (main at b6bbfee, before the variables were declared once) load, round-trip in the current format and continue as that build did.
 
+mod common;
+use common::vr;
 use ecf_contact::instance::{Instance, Status};
 use ecf_contact::state;
-use ecf_contact::vars;
 
 /// A state after 8 steps of 1 ms (grid 6 x 3, mu = 0.3, geometry = 2 with Rx = 0.5,
 /// columns = humidity=aux2), from fmi2SerializeFMUstate of that build.
 const STATE_V2: &[u8] = include_bytes!("data/state_v2.bin");
 
-/// The outputs (f64 bits, in the order of the outputs) after each of 4 steps of 0.5 ms from
+/// The outputs (f64 bits, in the order of [`common::OUTPUT_NAMES`], the outputs of that
+/// build) after each of 4 steps of 0.5 ms from
 /// the state, with cx = 0.02, 0.04, 0.06, 0.08. The build that wrote the state continued
 /// them bit for bit until the scalar temperature solve of a softening layer (creep-core
 /// engine/softening.rs) replaced the general one for most moves. Since issue 25 the
@@ -81,31 +83,6 @@ const EXPECTED: [[u64; 13]; 4] = [
     ],
 ];
 
-/// The outputs of that build, in the order of [`EXPECTED`].
-const OUTPUTS_V2: [&str; 13] = [
-    "Fx",
-    "Fy",
-    "Mz",
-    "f",
-    "T_max",
-    "T_mean",
-    "P_fric",
-    "frac_elastic",
-    "frac_plastic",
-    "frac_sliding",
-    "a",
-    "b",
-    "p0",
-];
-
-fn vr(name: &str) -> u32 {
-    vars::table()
-        .iter()
-        .find(|v| v.name == name)
-        .map(|v| v.vr)
-        .expect(name)
-}
-
 #[test]
 fn a_version_2_state_of_an_earlier_build_loads_and_continues_as_it_did() {
     let snap = state::deserialize(STATE_V2).expect("the version 2 state loads");
@@ -131,7 +108,7 @@ fn a_version_2_state_of_an_earlier_build_loads_and_continues_as_it_did() {
     for (k, want) in EXPECTED.iter().enumerate() {
         assert_eq!(i.set_real(vr("cx"), 0.02 * (k + 1) as f64), Status::Ok);
         assert_eq!(i.do_step(i.time(), 5e-4), Status::Ok);
-        for (name, w) in OUTPUTS_V2.iter().zip(want) {
+        for (name, w) in common::OUTPUT_NAMES.iter().zip(want) {
             let x = i.get_real(vr(name)).expect("output");
             let want = f64::from_bits(*w);
             let (x0, w0, floor) = match *name {

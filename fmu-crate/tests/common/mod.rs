@@ -44,6 +44,38 @@ pub fn messages(name: &str) -> Vec<(log::Level, String)> {
         .unwrap_or_default()
 }
 
+/// The FMU's 13 outputs in the order of creep-core's `OUTPUTS` (and of
+/// `Outputs::to_array`), unchanged since FMU state format version 2, whose fixture
+/// (`state_format.rs`) records them in this order; a new output would go after them.
+pub const OUTPUT_NAMES: [&str; 13] = [
+    "Fx",
+    "Fy",
+    "Mz",
+    "f",
+    "T_max",
+    "T_mean",
+    "P_fric",
+    "frac_elastic",
+    "frac_plastic",
+    "frac_sliding",
+    "a",
+    "b",
+    "p0",
+];
+
+/// The variables of `kind` with one of the `causalities`, in the table's order.
+pub fn vars_of(
+    kind: ecf_contact::vars::Kind,
+    causalities: &[ecf_contact::vars::Causality],
+) -> Vec<ecf_contact::vars::Var> {
+    ecf_contact::vars::table()
+        .iter()
+        .filter(|v| v.kind == kind && causalities.contains(&v.causality))
+        .cloned()
+        .collect()
+}
+
+/// The value reference of a variable by name (panics naming an unknown one).
 pub fn vr(name: &str) -> u32 {
     ecf_contact::vars::table()
         .iter()
