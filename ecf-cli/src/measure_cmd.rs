@@ -29,7 +29,7 @@ pub fn compare(
     let (pred, warnings) = predict_warned(cfg, data, threads)?;
     let c = cmp(data, &pred);
     if !c.cv_rmse_pct.is_finite() {
-        let mean = data.rows.iter().map(|r| r.f).sum::<f64>() / data.rows.len() as f64;
+        let mean = ecf_measure::stats::mean(&data.rows.iter().map(|r| r.f).collect::<Vec<_>>());
         return Err(CreepError::Data {
             source_name: data.source.clone(),
             message: format!(
@@ -785,7 +785,7 @@ pub fn compare_hpt(
             let idx = idx_of(s);
             (
                 s.clone(),
-                ecf_measure::measure::cv_rmse_pct(
+                ecf_measure::stats::cv_rmse_pct(
                     &idx.iter().map(|&i| rows[i].tau).collect::<Vec<_>>(),
                     &idx.iter().map(|&i| model[i]).collect::<Vec<_>>(),
                 ),

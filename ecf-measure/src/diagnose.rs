@@ -13,7 +13,8 @@
 
 use crate::evaluate::{predict_warned, predict_with, Memo, ModelWarning, Prediction};
 use crate::fit::{default_free, fit_params_with, FitOptions, FreeParam};
-use crate::measure::{cv_rmse_pct, Dataset};
+use crate::measure::Dataset;
+use crate::stats::{cv_rmse_pct, mean_sd, pearson};
 use creep_core::config::{Config, ModelKind};
 use creep_core::effects::{self, Effect};
 use creep_core::error::Result;
@@ -100,22 +101,6 @@ pub struct Diagnosis {
     /// Warnings the model raised for the rows under the configuration as given (wheel slide,
     /// Péclet condition, ...), counted per series.
     pub warnings: Vec<ModelWarning>,
-}
-
-fn pearson(x: &[f64], y: &[f64]) -> f64 {
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
-    for (a, b) in x.iter().zip(y) {
-        sxy += (a - mx) * (b - my);
-        sxx += (a - mx) * (a - mx);
-        syy += (b - my) * (b - my);
-    }
-    if sxx <= 0.0 || syy <= 0.0 {
-        0.0
-    } else {
-        sxy / (sxx * syy).sqrt()
-    }
 }
 
 /// Residual correlations with every variable, strongest first.
@@ -496,10 +481,8 @@ fn run(
                 .position(|n| *n == cr.variable)
                 .unwrap_or(0);
             let x: Vec<f64> = data.rows.iter().map(|r| r.extra[k]).collect();
-            let mean = x.iter().sum::<f64>() / x.len() as f64;
-            let sd = (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / x.len() as f64)
-                .sqrt()
-                .max(1e-12);
+            let (mean, sd) = mean_sd(&x);
+            let sd = sd.max(1e-12);
             for &t in targets {
                 progress(&format!("formula on {} ({})", cr.variable, t.name()));
                 let name = format!("{}_by_{}", t.name(), cr.variable);

@@ -1,6 +1,7 @@
 //! Runs a configuration over a measurement file and compares: per-row predictions, CV(RMSE) overall, per group and per creepage regime.
 
 use crate::measure::{Dataset, Row};
+use crate::stats::Residuals;
 use creep_core::config::{Config, Geometry};
 use creep_core::error::{CreepError, Result};
 use creep_core::model::Model;
@@ -644,34 +645,14 @@ pub struct Comparison {
     pub groups: Vec<GroupStat>,
 }
 
-#[derive(Default, Clone, Copy)]
-struct Acc {
-    n: usize,
-    sq: f64,
-    meas: f64,
-    res: f64,
-}
-
-impl Acc {
-    fn add(&mut self, meas: f64, model: f64) {
-        self.n += 1;
-        self.sq += (model - meas) * (model - meas);
-        self.meas += meas;
-        self.res += model - meas;
-    }
-    fn stat(&self, by: &str, value: String) -> GroupStat {
-        let n = self.n as f64;
-        GroupStat {
-            by: by.into(),
-            value,
-            n: self.n,
-            cv_rmse_pct: if self.n == 0 {
-                f64::NAN
-            } else {
-                100.0 * (self.sq / n).sqrt() / (self.meas / n).abs()
-            },
-            mean_residual: if self.n == 0 { f64::NAN } else { self.res / n },
-        }
+/// One group's statistics, named.
+fn group_stat(acc: &Residuals, by: &str, value: String) -> GroupStat {
+    GroupStat {
+        by: by.into(),
+        value,
+        n: acc.n,
+        cv_rmse_pct: acc.cv_rmse_pct(),
+        mean_residual: acc.mean_residual(),
     }
 }
 
@@ -681,12 +662,12 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
     let mut groups = Vec::new();
     let reg = regimes(data);
     // per key: first-appearance order of the values and their accumulators
-    type TextKey<'a> = (Vec<String>, HashMap<&'a str, usize>, Vec<Acc>);
-    type NumKey = (Vec<f64>, HashMap<u64, usize>, Vec<Acc>);
+    type TextKey<'a> = (Vec<String>, HashMap<&'a str, usize>, Vec<Residuals>);
+    type NumKey = (Vec<f64>, HashMap<u64, usize>, Vec<Residuals>);
     let mut text_keys: [TextKey; 2] = Default::default();
     let mut num_keys: [NumKey; 2] = Default::default();
-    let mut regime = [Acc::default(); 3];
-    let (mut all, mut ge1) = (Acc::default(), Acc::default());
+    let mut regime = [Residuals::default(); 3];
+    let (mut all, mut ge1) = (Residuals::default(), Residuals::default());
     for (i, r) in data.rows.iter().enumerate() {
         let (m, y) = (r.f, pred[i].f);
         all.add(m, y);
@@ -706,7 +687,7 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
             let (names, idx, acc) = &mut text_keys[k];
             let j = *idx.entry(v).or_insert_with(|| {
                 names.push(v.to_string());
-                acc.push(Acc::default());
+                acc.push(Residuals::default());
                 names.len() - 1
             });
             acc[j].add(m, y);
@@ -715,7 +696,7 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
             let (vals, idx, acc) = &mut num_keys[k];
             let j = *idx.entry(v.to_bits()).or_insert_with(|| {
                 vals.push(v);
-                acc.push(Acc::default());
+                acc.push(Residuals::default());
                 vals.len() - 1
             });
             acc[j].add(m, y);
@@ -724,23 +705,23 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
     for (k, by) in ["series", "condition"].into_iter().enumerate() {
         let (names, _, acc) = &text_keys[k];
         for (n, a) in names.iter().zip(acc) {
-            groups.push(a.stat(by, n.clone()));
+            groups.push(group_stat(a, by, n.clone()));
         }
     }
     for (k, by) in ["v_mps", "fn_kN"].into_iter().enumerate() {
         let (vals, _, acc) = &num_keys[k];
         for (v, a) in vals.iter().zip(acc) {
-            groups.push(a.stat(by, format!("{v}")));
+            groups.push(group_stat(a, by, format!("{v}")));
         }
     }
     for (k, rg) in ["R1", "R2", "R3"].into_iter().enumerate() {
         if regime[k].n > 0 {
-            groups.push(regime[k].stat("regime", rg.into()));
+            groups.push(group_stat(&regime[k], "regime", rg.into()));
         }
     }
     Comparison {
-        cv_rmse_pct: all.stat("all", String::new()).cv_rmse_pct,
-        cv_rmse_pct_cx_ge_1pct: ge1.stat("cx>=1%", "yes".into()).cv_rmse_pct,
+        cv_rmse_pct: all.cv_rmse_pct(),
+        cv_rmse_pct_cx_ge_1pct: ge1.cv_rmse_pct(),
         n: data.rows.len(),
         groups,
     }

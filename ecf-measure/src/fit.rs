@@ -14,7 +14,8 @@
 //! `at_upper_bound`); a best result still worse than the start is a failed fit.
 
 use crate::evaluate::{predict_with, Memo};
-use crate::measure::{cv_rmse_pct, Dataset};
+use crate::measure::Dataset;
+use crate::stats::cv_rmse_pct;
 use creep_core::config::{Config, ModelKind};
 use creep_core::effects::Effect;
 use creep_core::error::{CreepError, Result};
@@ -612,7 +613,7 @@ pub fn fit_generic_with(
     let before = model(cfg)?;
     let cv_before = cv_rmse_pct(meas, &before);
     if !cv_before.is_finite() {
-        let mean = meas.iter().sum::<f64>() / meas.len() as f64;
+        let mean = crate::stats::mean(meas);
         return Err(CreepError::Fit(format!(
             "CV(RMSE) of {source} is not finite before the fit ({cv_before}): the mean measured traction coefficient is {mean}; CV(RMSE) divides by it"
         )));

@@ -1,4 +1,4 @@
-//! Measurement files (steady characteristics, time series, high-pressure-torsion) and the seed's error metric CV(RMSE) (Eq. 2.8, 2.9).
+//! Measurement files: steady characteristics, time series and high-pressure-torsion curves, read completely or refused with file, line, column and reason.
 //!
 //! A measurement file is CSV with a header row; one row per measured point. The delimiter
 //! (`,`, `;` or tab) is detected from the header; with `;` a decimal comma is accepted.
@@ -14,6 +14,9 @@ use creep_core::engine::Inputs;
 use creep_core::error::{CreepError, Result};
 use std::collections::BTreeMap;
 use std::path::Path;
+
+/// CV(RMSE) lives in [`crate::stats`]; re-exported here, where it was first.
+pub use crate::stats::cv_rmse_pct;
 
 /// Canonical column names (the quantities the reader knows).
 pub const KNOWN: &[&str] = &[
@@ -1157,22 +1160,6 @@ pub fn read_hpt(text: &str, src: &str) -> Result<Vec<HptRow>> {
     Ok(out)
 }
 
-/// CV(RMSE) in percent (Eq. 2.9): 100 sqrt(mean((k - k_hat)^2)) / mean(k).
-pub fn cv_rmse_pct(measured: &[f64], model: &[f64]) -> f64 {
-    let n = measured.len().min(model.len());
-    if n == 0 {
-        return f64::NAN;
-    }
-    let mse = measured
-        .iter()
-        .zip(model)
-        .map(|(a, b)| (a - b) * (a - b))
-        .sum::<f64>()
-        / n as f64;
-    let mean = measured.iter().take(n).sum::<f64>() / n as f64;
-    100.0 * mse.sqrt() / mean.abs()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1235,13 +1222,6 @@ mod tests {
         let t = "cx,f,v_mps,fn_kN,humidity,humidity [%]\n0.01,0.3,5,110,40,41\n";
         let d = Dataset::from_csv_str(t, "x.csv", &Defaults::default()).unwrap();
         assert_eq!(d.extra_names, vec!["humidity", "humidity [%]"]);
-    }
-
-    #[test]
-    fn cv_rmse_is_eq_2_9() {
-        assert!((cv_rmse_pct(&[1.0, 3.0], &[1.0, 3.0])).abs() < 1e-12);
-        // rmse = 1, mean = 2 -> 50 %
-        assert!((cv_rmse_pct(&[1.0, 3.0], &[2.0, 2.0]) - 50.0).abs() < 1e-12);
     }
 
     #[test]

@@ -17,8 +17,8 @@
 use crate::diagnose::{heldout, subset};
 use crate::evaluate::{predict_with, Prediction};
 use crate::fit::{fit_params_with, FitOptions, FreeParam};
-use crate::measure::cv_rmse_pct;
 use crate::measure::Dataset;
+use crate::stats::{cv_rmse_pct, mean_sd};
 use creep_core::config::Config;
 use creep_core::effects::Effect;
 use creep_core::error::Result;
@@ -94,13 +94,6 @@ struct Var {
     positive: bool,
 }
 
-fn stats(x: &[f64]) -> (f64, f64) {
-    let n = x.len().max(1) as f64;
-    let m = x.iter().sum::<f64>() / n;
-    let s = (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / n).sqrt();
-    (m, s)
-}
-
 fn variables(data: &Dataset, pred: &[Prediction]) -> Vec<Var> {
     let mut v: Vec<(String, String, Vec<f64>)> = vec![
         (
@@ -143,7 +136,7 @@ fn variables(data: &Dataset, pred: &[Prediction]) -> Vec<Var> {
     }
     v.into_iter()
         .filter_map(|(expr, corr, x)| {
-            let (r, s) = stats(&x);
+            let (r, s) = mean_sd(&x);
             // four significant digits: the factor is written into the configuration
             let sig = |v: f64| {
                 if v == 0.0 || !v.is_finite() {
