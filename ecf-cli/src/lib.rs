@@ -930,7 +930,7 @@ mod cleanup;
 mod measure_cmd;
 mod plots;
 
-use measure_cmd::Data;
+use ecf_measure::measure::Data;
 
 /// Runs the `ecf` command line with the process's arguments; the exit code is 2 on an error
 /// (printed to stderr). The `ecf` binary is this function; `scripts/build-fmu.sh --effects`

@@ -6,7 +6,7 @@ use ecf_measure::evaluate::{
     compare as cmp, predict_warned, regimes, warnings_text, ModelWarning, Prediction,
 };
 use ecf_measure::fit::{default_free, fit_params as run_fit, FreeParam};
-use ecf_measure::measure::Dataset;
+use ecf_measure::measure::{Data, Dataset};
 use std::io::Write;
 use std::path::Path;
 
@@ -712,47 +712,19 @@ fn write_atomically(out: &Path, ext: &str, bytes: &[u8]) -> Result<(), CreepErro
     Ok(())
 }
 
-/// A measurement file: rows of creep measurements, or high-pressure-torsion curves.
-pub enum Data {
-    /// Steady characteristics and time series (`cx`, `f`, ...).
-    Rows(Dataset),
-    /// High-pressure-torsion curves (`p_MPa`, `u_mm`, `tau_MPa`).
-    Hpt(Vec<ecf_measure::measure::HptRow>),
-}
-
-/// Reads a measurement file once; a header with `p_MPa`, `u_mm` and `tau_MPa` makes it a
-/// high-pressure-torsion file. The column mapping is printed on stderr.
+/// Reads a measurement file once, as its kind (ecf-measure's `file_kind`: a header with
+/// `p_MPa`, `u_mm` and `tau_MPa` makes it a high-pressure-torsion file). The column mapping of
+/// a file of rows is printed on stderr unless `quiet`.
 pub fn read_data(
     path: &Path,
     defaults: &ecf_measure::measure::Defaults,
     quiet: bool,
 ) -> Result<Data, CreepError> {
-    use ecf_measure::measure::{detect_delimiter, utf8_text};
-    let src = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| CreepError::Data {
-        source_name: src.clone(),
-        message: format!("cannot read: {e}"),
-    })?;
-    let text = utf8_text(&bytes, &src)?;
-    let delim = detect_delimiter(&text) as char;
-    let hpt = text
-        .lines()
-        .find(|l| !l.trim_start().starts_with('#'))
-        .is_some_and(|h| {
-            let cols: Vec<&str> = h.split(delim).map(|c| c.trim()).collect();
-            ["p_MPa", "u_mm", "tau_MPa"]
-                .iter()
-                .all(|c| cols.contains(c))
-        });
-    Ok(if hpt {
-        Data::Hpt(ecf_measure::measure::read_hpt(&text, &src)?)
-    } else {
-        let d = Dataset::from_csv_str(&text, &src, defaults)?;
-        if !quiet {
-            eprint!("{}", d.mapping_text());
-        }
-        Data::Rows(d)
-    })
+    let data = ecf_measure::measure::read_data(path, defaults)?;
+    if let (Data::Rows(d), false) = (&data, quiet) {
+        eprint!("{}", d.mapping_text());
+    }
+    Ok(data)
 }
 
 /// Writes a value as pretty JSON.
