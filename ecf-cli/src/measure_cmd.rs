@@ -1,7 +1,8 @@
 //! `ecf compare` and `ecf fit`: the measurement loop's comparison and fitting commands.
 
 use crate::plots::{xy_plot, Set, Style};
-use creep_core::{params, Config, CreepError, Inputs, Model};
+use creep_core::params::{self, P};
+use creep_core::{Config, CreepError, Inputs, Model};
 use ecf_measure::evaluate::{
     compare as cmp, predict_warned, regimes, warnings_text, ModelWarning, Prediction,
 };
@@ -300,29 +301,38 @@ pub fn with_bounds(cfg: &Config, bounds: &[String]) -> Result<Config, CreepError
     Ok(c)
 }
 
+/// What `ecf fit` asks for beyond the data and the configuration.
+pub struct FitRequest<'a> {
+    /// `--free`: the parameters to fit, comma separated (`None`: the data kind's default).
+    pub free: Option<&'a str>,
+    /// `--bound NAME=MIN:MAX`, each narrowing a parameter's bounds.
+    pub bounds: &'a [String],
+    /// `--out`: where the fitted configuration goes.
+    pub out: &'a Path,
+    /// `--json`: report as JSON.
+    pub json: bool,
+}
+
+impl FitRequest<'_> {
+    /// The set-up both kinds of fit start from: the configuration with the `--bound`s applied,
+    /// and the free parameters of `--free` (else `default`).
+    fn setup(&self, cfg: &Config, default: Vec<P>) -> Result<(Config, Vec<FreeParam>), CreepError> {
+        let cfg = with_bounds(cfg, self.bounds)?;
+        let free = FreeParam::list(&cfg, self.free, default)?;
+        Ok((cfg, free))
+    }
+}
+
 /// Fits, writes the fitted configuration atomically and reports.
-#[allow(clippy::too_many_arguments)]
 pub fn fit(
     cfg: &Config,
     data: &Dataset,
     threads: usize,
-    free: Option<&str>,
-    bounds: &[String],
-    out: &Path,
-    json: bool,
+    req: &FitRequest,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let cfg = &with_bounds(cfg, bounds)?;
-    let free: Vec<FreeParam> = match free {
-        Some(list) => list
-            .split(',')
-            .map(|n| FreeParam::resolve(cfg, n.trim()))
-            .collect::<Result<_, _>>()?,
-        None => default_free(cfg)
-            .into_iter()
-            .map(FreeParam::Builtin)
-            .collect(),
-    };
+    let (cfg, free) = req.setup(cfg, default_free(cfg))?;
+    let cfg = &cfg;
     let bar = indicatif::ProgressBar::new_spinner();
     bar.set_style(
         indicatif::ProgressStyle::with_template("{spinner} fitting {msg} [{elapsed}]")
@@ -341,7 +351,7 @@ pub fn fit(
     bar.finish_and_clear();
     // the model's warnings for the rows under the fitted configuration
     let (_, warnings) = predict_warned(&r.config, data, threads)?;
-    report_fit(&r, &warnings, out, json, w)
+    report_fit(&r, &warnings, req.out, req.json, w)
 }
 
 /// Diagnoses and reports.
@@ -827,30 +837,16 @@ pub fn compare_hpt(
 }
 
 /// Fits the layer parameters to high-pressure-torsion curves (written atomically).
-#[allow(clippy::too_many_arguments)]
 pub fn fit_hpt(
     cfg: &Config,
     path: &Path,
     rows: &[ecf_measure::measure::HptRow],
-    free: Option<&str>,
-    bounds: &[String],
-    out: &Path,
-    json: bool,
+    req: &FitRequest,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let cfg = &with_bounds(cfg, bounds)?;
-    let free: Vec<FreeParam> = match free {
-        Some(list) => list
-            .split(',')
-            .map(|n| FreeParam::resolve(cfg, n.trim()))
-            .collect::<Result<_, _>>()?,
-        None => ecf_measure::hpt::default_free()
-            .into_iter()
-            .map(FreeParam::Builtin)
-            .collect(),
-    };
-    let r = ecf_measure::hpt::fit(cfg, &path.display().to_string(), rows, &free, &|_| {})?;
-    report_fit(&r, &[], out, json, w)
+    let (cfg, free) = req.setup(cfg, ecf_measure::hpt::default_free())?;
+    let r = ecf_measure::hpt::fit(&cfg, &path.display().to_string(), rows, &free, &|_| {})?;
+    report_fit(&r, &[], req.out, req.json, w)
 }
 
 /// A JSON number, or "inf" for an infinity (a standard error of a parameter the data do not

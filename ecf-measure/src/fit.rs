@@ -123,6 +123,17 @@ impl FreeParam {
             }
         }
     }
+    /// The parameters of a comma-separated list of names ([`FreeParam::resolve`], as `--free`
+    /// takes them), or `default` when no list is given.
+    pub fn list(cfg: &Config, names: Option<&str>, default: Vec<P>) -> Result<Vec<FreeParam>> {
+        match names {
+            Some(list) => list
+                .split(',')
+                .map(|n| FreeParam::resolve(cfg, n.trim()))
+                .collect(),
+            None => Ok(default.into_iter().map(FreeParam::Builtin).collect()),
+        }
+    }
     /// Resolves a name: a registry parameter, `EFFECT.PARAM`, or a formula effect's parameter
     /// name alone where it is unique among the formula effects.
     pub fn resolve(cfg: &Config, name: &str) -> Result<FreeParam> {
