@@ -280,7 +280,7 @@ fn report(
         .map(|p| p.display().to_string())
         .or(d.preset.clone())
         .unwrap_or_default();
-    measure_cmd::report(&cfg, &first_name, second.as_ref(), &data, d.threads, out)?;
+    report_cmd::report(&cfg, &first_name, second.as_ref(), &data, d.threads, out)?;
     writeln!(w, "{}", out.display()).map_err(model_cmd::io)
 }
 
@@ -352,6 +352,7 @@ mod cleanup;
 mod measure_cmd;
 mod model_cmd;
 mod plots;
+mod report_cmd;
 
 use ecf_measure::measure::Data;
 
