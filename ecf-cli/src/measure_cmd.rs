@@ -122,10 +122,28 @@ pub(crate) fn write_plots(
         source_name: dir.display().to_string(),
         message: format!("cannot create: {e}"),
     })?;
-    let err = |m: String| CreepError::Config {
+    series_plots(cfg, data, pred, dir, &mut written)?;
+    residual_plots(data, pred, dir, &mut written)?;
+    Ok(written)
+}
+
+/// An error of the plotting library, named after `--plots`.
+fn plot_error(m: String) -> CreepError {
+    CreepError::Config {
         source_name: "--plots".into(),
         message: m,
-    };
+    }
+}
+
+/// Measured against model, one plot per series: over creepage with a dense steady model
+/// curve at the series' first operating point, or over time for a time series.
+fn series_plots(
+    cfg: &Config,
+    data: &Dataset,
+    pred: &[Prediction],
+    dir: &Path,
+    written: &mut Vec<(std::path::PathBuf, String)>,
+) -> Result<(), CreepError> {
     for (k, s) in data.series().iter().enumerate() {
         let idx: Vec<usize> = (0..data.rows.len())
             .filter(|&i| &data.rows[i].series == s)
@@ -187,7 +205,7 @@ pub(crate) fn write_plots(
             },
         ];
         let file = dir.join(format!("series_{k:02}_{}.png", sanitize(s)));
-        xy_plot(&file, &title, xlabel, "traction coefficient f (-)", &sets).map_err(err)?;
+        xy_plot(&file, &title, xlabel, "traction coefficient f (-)", &sets).map_err(plot_error)?;
         written.push((
             file,
             format!(
@@ -198,6 +216,17 @@ pub(crate) fn write_plots(
             ),
         ));
     }
+    Ok(())
+}
+
+/// The residuals over creepage, slip velocity, model temperature, frictional power and every
+/// extra column, coloured by creepage regime.
+fn residual_plots(
+    data: &Dataset,
+    pred: &[Prediction],
+    dir: &Path,
+    written: &mut Vec<(std::path::PathBuf, String)>,
+) -> Result<(), CreepError> {
     let res: Vec<f64> = data.rows.iter().zip(pred).map(|(r, p)| p.f - r.f).collect();
     let mut vars: Vec<(String, String, Vec<f64>)> = vec![
         (
@@ -255,7 +284,7 @@ pub(crate) fn write_plots(
             "residual (-)",
             &sets,
         )
-        .map_err(err)?;
+        .map_err(plot_error)?;
         written.push((
             file,
             format!(
@@ -263,7 +292,7 @@ pub(crate) fn write_plots(
             ),
         ));
     }
-    Ok(written)
+    Ok(())
 }
 
 fn sanitize(s: &str) -> String {
