@@ -1,9 +1,89 @@
 //! The model commands of `ecf`: `curve`, `step`, `sine`, `field` and `info`, each writing its CSV (or text) into the output buffer.
 
-use crate::{ModelArgs, TransientArgs};
-use clap::Args;
+use clap::{Args, ValueEnum};
 use creep_core::{Config, CreepError, FieldPoint, Geometry, Grid, Inputs, Model, Outputs};
 use std::io::Write;
+use std::path::PathBuf;
+
+/// How a time step advances the bristles (`creep_core::engine::Scheme`, docs/model.md
+/// section 3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum SchemeArg {
+    /// Cell by cell: the reference, independent of the time step within 0.5 %
+    Cells,
+    /// Continuous sub-steps of up to 8 cells: 2-4x faster on 80x21 at 0.1-1 ms steps, its
+    /// dependence on the time step up to about 1 %
+    Continuous,
+}
+
+#[derive(Args, Clone)]
+pub(crate) struct TransientArgs {
+    /// How a time step advances the bristles: cells (reference) or continuous (faster; see
+    /// docs/model.md section 3)
+    #[arg(long, value_enum, default_value_t = SchemeArg::Cells)]
+    scheme: SchemeArg,
+}
+
+impl TransientArgs {
+    fn apply(&self, model: &mut Model) {
+        use creep_core::engine::Scheme;
+        model.set_scheme(match self.scheme {
+            SchemeArg::Cells => Scheme::CellsMarch,
+            SchemeArg::Continuous => Scheme::Continuous,
+        });
+    }
+}
+
+#[derive(Args, Clone)]
+pub(crate) struct ModelArgs {
+    /// Model: ecf, fastsim or polach
+    #[arg(long, default_value = "ecf")]
+    model: String,
+    /// Preset: table4.1, dry, wet, dry_sanded, wet_sanded, twin_disc, fastsim, polach
+    #[arg(long)]
+    preset: Option<String>,
+    /// Configuration JSON file ({"model":..., "preset":..., "effects":[...], "params":{...}})
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Coulomb friction coefficient (FASTSIM), dimensionless
+    #[arg(long)]
+    mu: Option<f64>,
+    /// Rolling (vehicle) speed, m/s; negative: rolling backwards (creepages over |v|)
+    #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
+    v_mps: f64,
+    /// Normal force, kN (> 0)
+    #[arg(
+        long = "fn-kN",
+        visible_alias = "fn-kn",
+        default_value_t = 110.0,
+        allow_negative_numbers = true
+    )]
+    fn_kn: f64,
+    /// Semi-axis in rolling direction at this load, mm (with --b-mm)
+    #[arg(long)]
+    a_mm: Option<f64>,
+    /// Lateral semi-axis at this load, mm (with --a-mm)
+    #[arg(long)]
+    b_mm: Option<f64>,
+    /// Bristle grid NXxNY (cells per strip x strips), e.g. 40x21
+    #[arg(long)]
+    grid: Option<String>,
+    /// Lateral creepage, dimensionless
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    cy: f64,
+    /// Spin creepage, 1/m
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    spin: f64,
+    /// Bulk temperature, degC
+    #[arg(long, default_value_t = 20.0, allow_hyphen_values = true)]
+    t_bulk_c: f64,
+    /// Parameter override NAME=VALUE (repeatable; units as in the name, see `ecf info`)
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    /// Value of a data column read by formula or Rust effects, NAME=VALUE (repeatable)
+    #[arg(long = "extra", value_name = "NAME=VALUE")]
+    extra: Vec<String>,
+}
 
 /// An error writing the output.
 pub(crate) fn io(e: std::io::Error) -> CreepError {
