@@ -1,12 +1,13 @@
-//! `ecf compare` and `ecf fit`: the measurement loop's comparison and fitting commands.
+//! `ecf compare`, `ecf fit` and `ecf diagnose`: the measurement loop's commands, for creep measurements and high-pressure-torsion curves, and the helpers `ecf report` shares (plots, warnings, atomic writes).
 
 use crate::plots::{xy_plot, Set, Style};
-use creep_core::{params, Config, CreepError, Inputs, Model};
+use creep_core::params::{self, P};
+use creep_core::{Config, CreepError, Inputs, Model};
 use ecf_measure::evaluate::{
     compare as cmp, predict_warned, regimes, warnings_text, ModelWarning, Prediction,
 };
 use ecf_measure::fit::{default_free, fit_params as run_fit, FreeParam};
-use ecf_measure::measure::Dataset;
+use ecf_measure::measure::{Data, Dataset};
 use std::io::Write;
 use std::path::Path;
 
@@ -29,7 +30,7 @@ pub fn compare(
     let (pred, warnings) = predict_warned(cfg, data, threads)?;
     let c = cmp(data, &pred);
     if !c.cv_rmse_pct.is_finite() {
-        let mean = data.rows.iter().map(|r| r.f).sum::<f64>() / data.rows.len() as f64;
+        let mean = ecf_measure::stats::mean(&data.rows.iter().map(|r| r.f).collect::<Vec<_>>());
         return Err(CreepError::Data {
             source_name: data.source.clone(),
             message: format!(
@@ -91,7 +92,7 @@ pub fn compare(
 
 /// "X % for `what`" (the CV(RMSE) of the rows at c_x >= 1 %), or "no row at `what`" where
 /// there is none (the statistic is NaN then): no "NaN %" in a report.
-fn ge_1pct_text(cv: f64, what: &str) -> String {
+pub(crate) fn ge_1pct_text(cv: f64, what: &str) -> String {
     if cv.is_finite() {
         format!("{cv:.2} % for {what}")
     } else {
@@ -101,7 +102,7 @@ fn ge_1pct_text(cv: f64, what: &str) -> String {
 
 /// The model's warnings for the rows, each once with its rows counted per series (nothing
 /// when there are none).
-fn write_warnings(w: &mut Vec<u8>, ws: &[ModelWarning]) -> Result<(), CreepError> {
+pub(crate) fn write_warnings(w: &mut Vec<u8>, ws: &[ModelWarning]) -> Result<(), CreepError> {
     if !ws.is_empty() {
         write!(w, "\n{}", warnings_text(ws)).map_err(io)?;
     }
@@ -110,7 +111,7 @@ fn write_warnings(w: &mut Vec<u8>, ws: &[ModelWarning]) -> Result<(), CreepError
 
 /// Writes the PNGs; returns (file, caption in words) in report order: measured against model
 /// per series first, then the residual plots.
-fn write_plots(
+pub(crate) fn write_plots(
     cfg: &Config,
     data: &Dataset,
     pred: &[Prediction],
@@ -121,10 +122,28 @@ fn write_plots(
         source_name: dir.display().to_string(),
         message: format!("cannot create: {e}"),
     })?;
-    let err = |m: String| CreepError::Config {
+    series_plots(cfg, data, pred, dir, &mut written)?;
+    residual_plots(data, pred, dir, &mut written)?;
+    Ok(written)
+}
+
+/// An error of the plotting library, named after `--plots`.
+fn plot_error(m: String) -> CreepError {
+    CreepError::Config {
         source_name: "--plots".into(),
         message: m,
-    };
+    }
+}
+
+/// Measured against model, one plot per series: over creepage with a dense steady model
+/// curve at the series' first operating point, or over time for a time series.
+fn series_plots(
+    cfg: &Config,
+    data: &Dataset,
+    pred: &[Prediction],
+    dir: &Path,
+    written: &mut Vec<(std::path::PathBuf, String)>,
+) -> Result<(), CreepError> {
     for (k, s) in data.series().iter().enumerate() {
         let idx: Vec<usize> = (0..data.rows.len())
             .filter(|&i| &data.rows[i].series == s)
@@ -186,7 +205,7 @@ fn write_plots(
             },
         ];
         let file = dir.join(format!("series_{k:02}_{}.png", sanitize(s)));
-        xy_plot(&file, &title, xlabel, "traction coefficient f (-)", &sets).map_err(err)?;
+        xy_plot(&file, &title, xlabel, "traction coefficient f (-)", &sets).map_err(plot_error)?;
         written.push((
             file,
             format!(
@@ -197,6 +216,17 @@ fn write_plots(
             ),
         ));
     }
+    Ok(())
+}
+
+/// The residuals over creepage, slip velocity, model temperature, frictional power and every
+/// extra column, coloured by creepage regime.
+fn residual_plots(
+    data: &Dataset,
+    pred: &[Prediction],
+    dir: &Path,
+    written: &mut Vec<(std::path::PathBuf, String)>,
+) -> Result<(), CreepError> {
     let res: Vec<f64> = data.rows.iter().zip(pred).map(|(r, p)| p.f - r.f).collect();
     let mut vars: Vec<(String, String, Vec<f64>)> = vec![
         (
@@ -254,7 +284,7 @@ fn write_plots(
             "residual (-)",
             &sets,
         )
-        .map_err(err)?;
+        .map_err(plot_error)?;
         written.push((
             file,
             format!(
@@ -262,7 +292,7 @@ fn write_plots(
             ),
         ));
     }
-    Ok(written)
+    Ok(())
 }
 
 fn sanitize(s: &str) -> String {
@@ -300,29 +330,38 @@ pub fn with_bounds(cfg: &Config, bounds: &[String]) -> Result<Config, CreepError
     Ok(c)
 }
 
+/// What `ecf fit` asks for beyond the data and the configuration.
+pub struct FitRequest<'a> {
+    /// `--free`: the parameters to fit, comma separated (`None`: the data kind's default).
+    pub free: Option<&'a str>,
+    /// `--bound NAME=MIN:MAX`, each narrowing a parameter's bounds.
+    pub bounds: &'a [String],
+    /// `--out`: where the fitted configuration goes.
+    pub out: &'a Path,
+    /// `--json`: report as JSON.
+    pub json: bool,
+}
+
+impl FitRequest<'_> {
+    /// The set-up both kinds of fit start from: the configuration with the `--bound`s applied,
+    /// and the free parameters of `--free` (else `default`).
+    fn setup(&self, cfg: &Config, default: Vec<P>) -> Result<(Config, Vec<FreeParam>), CreepError> {
+        let cfg = with_bounds(cfg, self.bounds)?;
+        let free = FreeParam::list(&cfg, self.free, default)?;
+        Ok((cfg, free))
+    }
+}
+
 /// Fits, writes the fitted configuration atomically and reports.
-#[allow(clippy::too_many_arguments)]
 pub fn fit(
     cfg: &Config,
     data: &Dataset,
     threads: usize,
-    free: Option<&str>,
-    bounds: &[String],
-    out: &Path,
-    json: bool,
+    req: &FitRequest,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let cfg = &with_bounds(cfg, bounds)?;
-    let free: Vec<FreeParam> = match free {
-        Some(list) => list
-            .split(',')
-            .map(|n| FreeParam::resolve(cfg, n.trim()))
-            .collect::<Result<_, _>>()?,
-        None => default_free(cfg)
-            .into_iter()
-            .map(FreeParam::Builtin)
-            .collect(),
-    };
+    let (cfg, free) = req.setup(cfg, default_free(cfg))?;
+    let cfg = &cfg;
     let bar = indicatif::ProgressBar::new_spinner();
     bar.set_style(
         indicatif::ProgressStyle::with_template("{spinner} fitting {msg} [{elapsed}]")
@@ -341,7 +380,7 @@ pub fn fit(
     bar.finish_and_clear();
     // the model's warnings for the rows under the fitted configuration
     let (_, warnings) = predict_warned(&r.config, data, threads)?;
-    report_fit(&r, &warnings, out, json, w)
+    report_fit(&r, &warnings, req.out, req.json, w)
 }
 
 /// Diagnoses and reports.
@@ -463,242 +502,9 @@ pub fn diagnose(
     Ok(())
 }
 
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-/// One configuration's part of the report, as HTML fragments.
-struct Column {
-    /// Heading, CV(RMSE) and the measured-against-model curves.
-    curves: String,
-    /// The CV(RMSE) table by group and the residual plots.
-    residuals: String,
-    /// CV(RMSE) overall, %.
-    cv: f64,
-}
-
-/// Comparison table and plots (embedded) of one configuration.
-fn report_column(
-    cfg: &Config,
-    name: &str,
-    data: &Dataset,
-    threads: usize,
-    tmp: &Path,
-) -> Result<Column, CreepError> {
-    use base64::Engine;
-    let (pred, warnings) = predict_warned(cfg, data, threads)?;
-    let c = cmp(data, &pred);
-    let figures = write_plots(cfg, data, &pred, tmp)?;
-    let mut h = format!(
-        "<h2>{}</h2><p>model <b>{}</b>, effects {}</p>",
-        esc(name),
-        cfg.model.name(),
-        esc(&format!("{:?}", cfg.effects.to_vec()))
-    );
-    h += &format!(
-        "<p class=big>CV(RMSE) = <b>{:.2} %</b> overall, {} (seed Eq. 2.9)</p>",
-        c.cv_rmse_pct,
-        ge_1pct_text(c.cv_rmse_pct_cx_ge_1pct, "c<sub>x</sub> &ge; 1 %")
-    );
-    for wn in &warnings {
-        let per: Vec<String> = wn
-            .per_series
-            .iter()
-            .map(|c| format!("series {}: {} row(s)", c.series, c.rows))
-            .collect();
-        h += &format!(
-            "<p class=warn>warning ({} row(s); {}): {}</p>",
-            wn.rows,
-            esc(&per.join("; ")),
-            esc(&wn.message)
-        );
-    }
-    let mut table = String::from("<table><tr><th>group</th><th>value</th><th>n</th><th>CV(RMSE) %</th><th>mean residual</th></tr>");
-    for g in &c.groups {
-        table += &format!(
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2}</td><td>{:+.4}</td></tr>",
-            esc(&g.by),
-            esc(&g.value),
-            g.n,
-            g.cv_rmse_pct,
-            g.mean_residual
-        );
-    }
-    table += "</table>";
-    let n_series = data.series().len();
-    let mut res = format!("<h3>{}: residuals</h3>{table}", esc(name));
-    for (k, (p, caption)) in figures.iter().enumerate() {
-        let bytes = std::fs::read(p).map_err(|e| CreepError::Config {
-            source_name: p.display().to_string(),
-            message: e.to_string(),
-        })?;
-        let b64 = base64::engine::general_purpose::STANDARD.encode(bytes);
-        let fig = format!(
-            "<figure><img alt=\"{c}\" src=\"data:image/png;base64,{b64}\"><figcaption>{c}</figcaption></figure>",
-            c = esc(caption)
-        );
-        if k < n_series {
-            h += &fig;
-        } else {
-            res += &fig;
-        }
-    }
-    Ok(Column {
-        curves: h,
-        residuals: res,
-        cv: c.cv_rmse_pct,
-    })
-}
-
-/// The table of fitted parameters from the `"fit"` record `ecf fit` writes into a fitted
-/// configuration file (empty when the file has none, e.g. a configuration written by hand).
-fn fitted_table(path: &str) -> String {
-    let rec = std::fs::read_to_string(path)
-        .ok()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .and_then(|v| v.get("fit").cloned());
-    let Some(rec) = rec else {
-        return String::new();
-    };
-    let num = |v: &serde_json::Value| -> String {
-        match v {
-            serde_json::Value::Number(n) => n.as_f64().map_or("-".into(), |x| format!("{x:.6}")),
-            serde_json::Value::String(s) => s.clone(),
-            _ => "-".into(),
-        }
-    };
-    let mut h = String::from("<h2>Fitted parameters</h2><table><tr><th>parameter</th><th>start</th><th>fitted</th><th>standard error</th><th>unit</th><th>flag</th></tr>");
-    for p in rec
-        .get("params")
-        .and_then(|p| p.as_array())
-        .into_iter()
-        .flatten()
-    {
-        let se = match p.get("stderr") {
-            Some(serde_json::Value::Number(n)) => {
-                n.as_f64().map_or("-".into(), |x| format!("± {x:.2e}"))
-            }
-            Some(serde_json::Value::String(s)) => format!("± {s}"),
-            _ => "-".into(),
-        };
-        let flag = p.get("flag").and_then(|f| f.as_str()).unwrap_or("");
-        h += &format!(
-            "<tr><td>{}</td><td>{}</td><td><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            esc(p.get("name").and_then(|n| n.as_str()).unwrap_or("?")),
-            num(p.get("start").unwrap_or(&serde_json::Value::Null)),
-            num(p.get("value").unwrap_or(&serde_json::Value::Null)),
-            esc(&se),
-            esc(p.get("unit").and_then(|u| u.as_str()).unwrap_or("-")),
-            esc(flag)
-        );
-    }
-    h += "</table>";
-    for w in rec
-        .get("warnings")
-        .and_then(|w| w.as_array())
-        .into_iter()
-        .flatten()
-    {
-        if let Some(w) = w.as_str() {
-            h += &format!("<p>warning: {}</p>", esc(w));
-        }
-    }
-    h
-}
-
-/// Writes the self-contained HTML report (atomically).
-pub fn report(
-    cfg: &Config,
-    name: &str,
-    second: Option<&(String, Config)>,
-    data: &Dataset,
-    threads: usize,
-    out: &Path,
-) -> Result<(), CreepError> {
-    let guard = crate::cleanup::Pending::new(
-        std::env::temp_dir().join(format!("ecf-report-{}", std::process::id())),
-    );
-    let tmp = guard.path().to_path_buf();
-    let _ = std::fs::remove_dir_all(&tmp);
-    let col1 = report_column(
-        cfg,
-        &format!("before: {name}"),
-        data,
-        threads,
-        &tmp.join("a"),
-    )?;
-    let col2 = match second {
-        Some((n, c)) => Some(report_column(
-            c,
-            &format!("after: {n}"),
-            data,
-            threads,
-            &tmp.join("b"),
-        )?),
-        None => None,
-    };
-    drop(guard);
-    let d = ecf_measure::diagnose::diagnose(cfg, data, threads, &|_| {})?;
-    let mut diag = format!(
-        "<h2>Diagnosis of the first configuration</h2><p><b>{}</b></p>",
-        esc(&d.verdict)
-    );
-    diag += &format!(
-        "<p>held-out folds by {} ({} folds); baseline held-out CV(RMSE) {:.2} %</p>",
-        esc(&d.folds_by),
-        d.folds,
-        d.baseline_heldout_cv_rmse_pct
-    );
-    diag += "<table><tr><th>candidate effect</th><th>held-out CV(RMSE) %</th><th>fitted CV(RMSE) %</th><th>why</th></tr>";
-    for c in &d.candidates {
-        diag += &format!(
-            "<tr><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{}</td></tr>",
-            esc(&c.effect),
-            c.heldout_cv_rmse_pct,
-            c.fitted_cv_rmse_pct,
-            esc(&c.explanation)
-        );
-    }
-    diag += "</table><table><tr><th>variable</th><th>residual correlation r</th></tr>";
-    for c in &d.correlations {
-        diag += &format!("<tr><td>{}</td><td>{:+.2}</td></tr>", esc(&c.variable), c.r);
-    }
-    diag += "</table>";
-    let cv1 = col1.cv;
-    let summary = match &col2 {
-        Some(c2) => format!(
-            "<p class=big>CV(RMSE): {cv1:.2} % &rarr; {:.2} %</p>",
-            c2.cv
-        ),
-        None => format!("<p class=big>CV(RMSE): {cv1:.2} %</p>"),
-    };
-    // measured against model first, then the fitted parameters, then the residuals, then
-    // the diagnosis
-    let side = |a: &str, b: Option<&str>| match b {
-        Some(b) => format!("<div class=cols><div>{a}</div><div>{b}</div></div>"),
-        None => format!("<div>{a}</div>"),
-    };
-    let fitted = second.map(|(p, _)| fitted_table(p)).unwrap_or_default();
-    let cols = side(&col1.curves, col2.as_ref().map(|c| c.curves.as_str()))
-        + &fitted
-        + "<h2>Residuals</h2>"
-        + &side(&col1.residuals, col2.as_ref().map(|c| c.residuals.as_str()))
-        + &diag;
-    let html = format!(
-        "<!DOCTYPE html><html><head><meta charset=utf-8><title>ECF report: {src}</title><style>body{{font-family:sans-serif;margin:2em;max-width:1900px}} table{{border-collapse:collapse;margin:1em 0}} td,th{{border:1px solid #bbb;padding:3px 8px;text-align:left}} .cols{{display:flex;gap:2em}} .cols>div{{flex:1;min-width:0}} img{{max-width:100%}} .big{{font-size:1.3em}}</style></head><body><h1>Measurements {src} ({n} rows) against the model</h1>{summary}{cols}<p>Generated by ecf {ver}.</p></body></html>\n",
-        src = esc(&data.source),
-        n = data.rows.len(),
-        ver = env!("CARGO_PKG_VERSION"),
-    );
-    write_atomically(out, "html.tmp", html.as_bytes())
-}
-
 /// Writes `out` through a temporary file beside it (extension `ext`), renamed at the end; the
 /// temporary file is removed on an error or an interrupt, and `out` is never half-written.
-fn write_atomically(out: &Path, ext: &str, bytes: &[u8]) -> Result<(), CreepError> {
+pub(crate) fn write_atomically(out: &Path, ext: &str, bytes: &[u8]) -> Result<(), CreepError> {
     let tmp = crate::cleanup::Pending::new(out.with_extension(ext));
     std::fs::write(tmp.path(), bytes).map_err(|e| CreepError::Config {
         source_name: tmp.path().display().to_string(),
@@ -712,47 +518,19 @@ fn write_atomically(out: &Path, ext: &str, bytes: &[u8]) -> Result<(), CreepErro
     Ok(())
 }
 
-/// A measurement file: rows of creep measurements, or high-pressure-torsion curves.
-pub enum Data {
-    /// Steady characteristics and time series (`cx`, `f`, ...).
-    Rows(Dataset),
-    /// High-pressure-torsion curves (`p_MPa`, `u_mm`, `tau_MPa`).
-    Hpt(Vec<ecf_measure::measure::HptRow>),
-}
-
-/// Reads a measurement file once; a header with `p_MPa`, `u_mm` and `tau_MPa` makes it a
-/// high-pressure-torsion file. The column mapping is printed on stderr.
+/// Reads a measurement file once, as its kind (ecf-measure's `file_kind`: a header with
+/// `p_MPa`, `u_mm` and `tau_MPa` makes it a high-pressure-torsion file). The column mapping of
+/// a file of rows is printed on stderr unless `quiet`.
 pub fn read_data(
     path: &Path,
     defaults: &ecf_measure::measure::Defaults,
     quiet: bool,
 ) -> Result<Data, CreepError> {
-    use ecf_measure::measure::{detect_delimiter, utf8_text};
-    let src = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| CreepError::Data {
-        source_name: src.clone(),
-        message: format!("cannot read: {e}"),
-    })?;
-    let text = utf8_text(&bytes, &src)?;
-    let delim = detect_delimiter(&text) as char;
-    let hpt = text
-        .lines()
-        .find(|l| !l.trim_start().starts_with('#'))
-        .is_some_and(|h| {
-            let cols: Vec<&str> = h.split(delim).map(|c| c.trim()).collect();
-            ["p_MPa", "u_mm", "tau_MPa"]
-                .iter()
-                .all(|c| cols.contains(c))
-        });
-    Ok(if hpt {
-        Data::Hpt(ecf_measure::measure::read_hpt(&text, &src)?)
-    } else {
-        let d = Dataset::from_csv_str(&text, &src, defaults)?;
-        if !quiet {
-            eprint!("{}", d.mapping_text());
-        }
-        Data::Rows(d)
-    })
+    let data = ecf_measure::measure::read_data(path, defaults)?;
+    if let (Data::Rows(d), false) = (&data, quiet) {
+        eprint!("{}", d.mapping_text());
+    }
+    Ok(data)
 }
 
 /// Writes a value as pretty JSON.
@@ -785,7 +563,7 @@ pub fn compare_hpt(
             let idx = idx_of(s);
             (
                 s.clone(),
-                ecf_measure::measure::cv_rmse_pct(
+                ecf_measure::stats::cv_rmse_pct(
                     &idx.iter().map(|&i| rows[i].tau).collect::<Vec<_>>(),
                     &idx.iter().map(|&i| model[i]).collect::<Vec<_>>(),
                 ),
@@ -855,30 +633,16 @@ pub fn compare_hpt(
 }
 
 /// Fits the layer parameters to high-pressure-torsion curves (written atomically).
-#[allow(clippy::too_many_arguments)]
 pub fn fit_hpt(
     cfg: &Config,
     path: &Path,
     rows: &[ecf_measure::measure::HptRow],
-    free: Option<&str>,
-    bounds: &[String],
-    out: &Path,
-    json: bool,
+    req: &FitRequest,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let cfg = &with_bounds(cfg, bounds)?;
-    let free: Vec<FreeParam> = match free {
-        Some(list) => list
-            .split(',')
-            .map(|n| FreeParam::resolve(cfg, n.trim()))
-            .collect::<Result<_, _>>()?,
-        None => ecf_measure::hpt::default_free()
-            .into_iter()
-            .map(FreeParam::Builtin)
-            .collect(),
-    };
-    let r = ecf_measure::hpt::fit(cfg, &path.display().to_string(), rows, &free, &|_| {})?;
-    report_fit(&r, &[], out, json, w)
+    let (cfg, free) = req.setup(cfg, ecf_measure::hpt::default_free())?;
+    let r = ecf_measure::hpt::fit(&cfg, &path.display().to_string(), rows, &free, &|_| {})?;
+    report_fit(&r, &[], req.out, req.json, w)
 }
 
 /// A JSON number, or "inf" for an infinity (a standard error of a parameter the data do not

@@ -13,7 +13,8 @@
 
 use crate::evaluate::{predict_warned, predict_with, Memo, ModelWarning, Prediction};
 use crate::fit::{default_free, fit_params_with, FitOptions, FreeParam};
-use crate::measure::{cv_rmse_pct, Dataset};
+use crate::measure::Dataset;
+use crate::stats::{cv_rmse_pct, mean_sd, pearson};
 use creep_core::config::{Config, ModelKind};
 use creep_core::effects::{self, Effect};
 use creep_core::error::Result;
@@ -100,22 +101,6 @@ pub struct Diagnosis {
     /// Warnings the model raised for the rows under the configuration as given (wheel slide,
     /// Péclet condition, ...), counted per series.
     pub warnings: Vec<ModelWarning>,
-}
-
-fn pearson(x: &[f64], y: &[f64]) -> f64 {
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
-    for (a, b) in x.iter().zip(y) {
-        sxy += (a - mx) * (b - my);
-        sxx += (a - mx) * (a - mx);
-        syy += (b - my) * (b - my);
-    }
-    if sxx <= 0.0 || syy <= 0.0 {
-        0.0
-    } else {
-        sxy / (sxx * syy).sqrt()
-    }
 }
 
 /// Residual correlations with every variable, strongest first.
@@ -341,6 +326,223 @@ pub fn diagnose_with(
     )
 }
 
+/// What every candidate of one diagnosis is judged against: the data, the folds, the
+/// configuration as given with its default free parameters and their held-out error.
+struct Baseline<'a> {
+    cfg: &'a Config,
+    data: &'a Dataset,
+    threads: usize,
+    opts: &'a FitOptions<'a>,
+    corr: &'a [Correlation],
+    labels: &'a [usize],
+    folds_by: &'a str,
+    free: &'a [FreeParam],
+    heldout: f64,
+}
+
+impl Baseline<'_> {
+    /// The held-out and the all-rows fitted CV(RMSE) of configuration `c` with `free`.
+    fn score(&self, c: &Config, free: &[FreeParam]) -> Result<(f64, f64)> {
+        let h = heldout(c, self.data, self.labels, free, self.threads, self.opts)?;
+        let fitted = fit_params_with(c, self.data, free, self.threads, self.opts, &|_| {})?;
+        Ok((h, fitted.cv_rmse_pct_after))
+    }
+
+    /// The baseline's free parameters with `more` added (each once).
+    fn free_with(&self, more: impl IntoIterator<Item = P>) -> Vec<FreeParam> {
+        let mut free = self.free.to_vec();
+        for p in more {
+            if !free.contains(&FreeParam::Builtin(p)) {
+                free.push(FreeParam::Builtin(p));
+            }
+        }
+        free
+    }
+
+    /// Each catalogue effect the configuration lacks and the data can show, added and
+    /// refitted; and whether every effect that can act on these data is already on.
+    fn catalogue(&self, progress: &(dyn Fn(&str) + Sync)) -> Result<(Vec<Candidate>, bool)> {
+        let (cfg, data) = (self.cfg, self.data);
+        let mut candidates = Vec::new();
+        if cfg.model == ModelKind::Polach || cfg.has(Effect::Coulomb) {
+            return Ok((candidates, false));
+        }
+        let has_series = data.rows.iter().any(|r| r.t.is_some());
+        // the wheel-slide effect differs from the seed's form by sqrt(v / v_w) only: it is a
+        // candidate where rows slide (|1 + c_x| < 0.5) with temperature on
+        let slide =
+            cfg.has(Effect::Temperature) && data.rows.iter().any(|r| (1.0 + r.cx).abs() < 0.5);
+        // effects that cannot act on these data are not counted as off: the wheel-slide
+        // effect without sliding rows, the transient-only effects on steady rows
+        let all_on = effects::CATALOGUE.iter().all(|i| {
+            i.effect == Effect::Coulomb
+                || cfg.has(i.effect)
+                || (i.effect == Effect::SurfaceTimeFlash && !slide)
+                || (matches!(i.effect, Effect::Transient | Effect::ElasticUnloading) && !has_series)
+        });
+        for info in effects::CATALOGUE {
+            let e = info.effect;
+            if cfg.has(e) || e == Effect::Coulomb {
+                continue;
+            }
+            if matches!(e, Effect::Transient | Effect::ElasticUnloading) && !has_series {
+                continue; // no time series: these effects cannot show in steady data
+            }
+            if e == Effect::SurfaceTimeFlash && !slide {
+                continue;
+            }
+            progress(info.name);
+            let mut c = cfg.clone();
+            c.effects.insert(e);
+            let mut more = effect_params(e);
+            if e == Effect::Temperature {
+                // the temperature set of default_free now applies
+                more.extend(default_free(&c));
+            }
+            let free = self.free_with(more);
+            let (h, fitted) = self.score(&c, &free)?;
+            let evidence = self
+                .corr
+                .iter()
+                .filter(|k| signature(e).contains(&k.variable.as_str()))
+                .max_by(|a, b| a.r.abs().total_cmp(&b.r.abs()))
+                .map(|k| format!("residual correlation with {} r = {:+.2}", k.variable, k.r))
+                .unwrap_or_else(|| "no signature variable in the data".into());
+            let first_sentence = first_sentence(info.description);
+            let (folds_by, base_heldout) = (self.folds_by, self.heldout);
+            candidates.push(Candidate {
+                effect: info.name.to_string(),
+                heldout_cv_rmse_pct: h,
+                fitted_cv_rmse_pct: fitted,
+                free: free.iter().map(|p| p.name(&c)).collect(),
+                explanation: format!(
+                    "{first_sentence}. Evidence: {evidence}; adding it and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %."
+                ),
+            });
+        }
+        Ok((candidates, all_on))
+    }
+
+    /// Registered Rust effects the configuration lacks, whose data columns the file has, added
+    /// and refitted; and those not tried for a missing column, in words.
+    fn rust_effects(
+        &self,
+        progress: &(dyn Fn(&str) + Sync),
+    ) -> Result<(Vec<Candidate>, Vec<String>)> {
+        let (cfg, data) = (self.cfg, self.data);
+        let (mut candidates, mut untried) = (Vec::new(), Vec::new());
+        if cfg.model == ModelKind::Polach {
+            return Ok((candidates, untried));
+        }
+        for eff in creep_core::custom::catalogue() {
+            if cfg.modifiers.iter().any(|u| u.name() == eff.name()) {
+                continue;
+            }
+            if let Some(c) = eff
+                .columns()
+                .iter()
+                .find(|c| !data.extra_names.iter().any(|n| n == *c))
+            {
+                untried.push(format!("{} (needs the column '{c}')", eff.name()));
+                continue;
+            }
+            progress(eff.name());
+            let mut c = cfg.clone();
+            c.modifiers.push(creep_core::AnyModifier::Rust(
+                creep_core::custom::CustomUse::by_name(eff.name())?,
+            ));
+            let mut free = self.free.to_vec();
+            let e = c.modifiers.len() - 1;
+            for (k, p) in eff.params().iter().enumerate() {
+                // parameters whose bounds are a reference value (lower bound > 0) stay fixed
+                if p.2 <= 0.0 {
+                    free.push(FreeParam::Modifier {
+                        effect: e,
+                        param: k,
+                    });
+                }
+            }
+            let (h, fitted) = self.score(&c, &free)?;
+            let (folds_by, base_heldout) = (self.folds_by, self.heldout);
+            candidates.push(Candidate {
+                effect: format!("Rust effect {}", eff.name()),
+                heldout_cv_rmse_pct: h,
+                fitted_cv_rmse_pct: fitted,
+                free: free.iter().map(|p| p.name(&c)).collect(),
+                explanation: format!(
+                    "{}. Adding this registered Rust effect and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %.",
+                    first_sentence(eff.description())
+                ),
+            });
+        }
+        Ok((candidates, untried))
+    }
+
+    /// Generic formula effects on the (at most two) extra columns with strong residual
+    /// structure, added and refitted.
+    fn formulas(&self, progress: &(dyn Fn(&str) + Sync)) -> Result<Vec<Candidate>> {
+        let (cfg, data) = (self.cfg, self.data);
+        let mut candidates = Vec::new();
+        if cfg.model == ModelKind::Polach {
+            return Ok(candidates);
+        }
+        let targets: &[Target] = if cfg.has(Effect::Coulomb) {
+            &[Target::Mu]
+        } else {
+            &[Target::TauC2, Target::TauC1]
+        };
+        for cr in self
+            .corr
+            .iter()
+            .filter(|c| data.extra_names.contains(&c.variable) && c.r.abs() >= STRONG)
+            .take(2)
+        {
+            let k = data
+                .extra_names
+                .iter()
+                .position(|n| *n == cr.variable)
+                .unwrap_or(0);
+            let x: Vec<f64> = data.rows.iter().map(|r| r.extra[k]).collect();
+            let (mean, sd) = mean_sd(&x);
+            let sd = sd.max(1e-12);
+            for &t in targets {
+                progress(&format!("formula on {} ({})", cr.variable, t.name()));
+                let name = format!("{}_by_{}", t.name(), cr.variable);
+                let factor = format!("exp(k * ({} - {mean}) / {sd})", cr.variable);
+                let k = FormulaParam {
+                    name: "k".into(),
+                    value: 0.0,
+                    min: -3.0,
+                    max: 3.0,
+                };
+                let fe = FormulaEffect::new(&name, t, &factor, vec![k])?;
+                let mut c = cfg.clone();
+                c.modifiers.push(creep_core::AnyModifier::Formula(fe));
+                let mut free = self.free.to_vec();
+                free.push(FreeParam::Modifier {
+                    effect: c.modifiers.len() - 1,
+                    param: 0,
+                });
+                let h = heldout(&c, data, self.labels, &free, self.threads, self.opts)?;
+                let fitted = fit_params_with(&c, data, &free, self.threads, self.opts, &|_| {})?;
+                let kfit = fitted.params.last().map(|p| p.value).unwrap_or(0.0);
+                let (folds_by, base_heldout) = (self.folds_by, self.heldout);
+                candidates.push(Candidate {
+                    effect: format!("formula: {} x exp(k ({} - {mean:.4}) / {sd:.4})", t.name(), cr.variable),
+                    heldout_cv_rmse_pct: h,
+                    fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
+                    free: free.iter().map(|p| p.name(&c)).collect(),
+                    explanation: format!(
+                        "No catalogue effect uses the column '{}', but the residuals follow it (r = {:+.2}). A generic formula effect scaling {} by exp(k (x - mean)/sd) (fitted k = {kfit:+.3}) takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %. Look for the physical mechanism behind this column, then write it as a formula effect or an effect in Rust.",
+                        cr.variable, cr.r, t.name()
+                    ),
+                });
+            }
+        }
+        Ok(candidates)
+    }
+}
+
 fn run(
     cfg: &Config,
     data: &Dataset,
@@ -369,216 +571,35 @@ fn run(
         .map(FreeParam::Builtin)
         .collect();
     let base_heldout = heldout(cfg, data, &labels, &base_free, threads, &opts)?;
-    let mut candidates = Vec::new();
-    let mut catalogue_all_on = false;
-    if cfg.model != ModelKind::Polach && !cfg.has(Effect::Coulomb) {
-        let has_series = data.rows.iter().any(|r| r.t.is_some());
-        // the wheel-slide effect differs from the seed's form by sqrt(v / v_w) only: it is a
-        // candidate where rows slide (|1 + c_x| < 0.5) with temperature on
-        let slide =
-            cfg.has(Effect::Temperature) && data.rows.iter().any(|r| (1.0 + r.cx).abs() < 0.5);
-        // effects that cannot act on these data are not counted as off: the wheel-slide
-        // effect without sliding rows, the transient-only effects on steady rows
-        catalogue_all_on = effects::CATALOGUE.iter().all(|i| {
-            i.effect == Effect::Coulomb
-                || cfg.has(i.effect)
-                || (i.effect == Effect::SurfaceTimeFlash && !slide)
-                || (matches!(i.effect, Effect::Transient | Effect::ElasticUnloading) && !has_series)
-        });
-        for info in effects::CATALOGUE {
-            let e = info.effect;
-            if cfg.has(e) || e == Effect::Coulomb {
-                continue;
-            }
-            if matches!(e, Effect::Transient | Effect::ElasticUnloading) && !has_series {
-                continue; // no time series: these effects cannot show in steady data
-            }
-            if e == Effect::SurfaceTimeFlash && !slide {
-                continue;
-            }
-            progress(info.name);
-            let mut c = cfg.clone();
-            c.effects.insert(e);
-            let mut free = base_free.clone();
-            for p in effect_params(e) {
-                if !free.contains(&FreeParam::Builtin(p)) {
-                    free.push(FreeParam::Builtin(p));
-                }
-            }
-            if e == Effect::Temperature {
-                // the temperature set of default_free now applies
-                for p in default_free(&c) {
-                    if !free.contains(&FreeParam::Builtin(p)) {
-                        free.push(FreeParam::Builtin(p));
-                    }
-                }
-            }
-            let h = heldout(&c, data, &labels, &free, threads, &opts)?;
-            let fitted = fit_params_with(&c, data, &free, threads, &opts, &|_| {})?;
-            let evidence = corr
-                .iter()
-                .filter(|k| signature(e).contains(&k.variable.as_str()))
-                .max_by(|a, b| a.r.abs().total_cmp(&b.r.abs()))
-                .map(|k| format!("residual correlation with {} r = {:+.2}", k.variable, k.r))
-                .unwrap_or_else(|| "no signature variable in the data".into());
-            let first_sentence = first_sentence(info.description);
-            candidates.push(Candidate {
-                effect: info.name.to_string(),
-                heldout_cv_rmse_pct: h,
-                fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
-                free: free.iter().map(|p| p.name(&c)).collect(),
-                explanation: format!(
-                    "{first_sentence}. Evidence: {evidence}; adding it and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %."
-                ),
-            });
-        }
-    }
-    // registered Rust effects the configuration lacks, whose data columns the file has
-    let mut untried: Vec<String> = Vec::new();
-    if cfg.model != ModelKind::Polach {
-        for eff in creep_core::custom::catalogue() {
-            if cfg.modifiers.iter().any(|u| u.name() == eff.name()) {
-                continue;
-            }
-            if let Some(c) = eff
-                .columns()
-                .iter()
-                .find(|c| !data.extra_names.iter().any(|n| n == *c))
-            {
-                untried.push(format!("{} (needs the column '{c}')", eff.name()));
-                continue;
-            }
-            progress(eff.name());
-            let mut c = cfg.clone();
-            c.modifiers.push(creep_core::AnyModifier::Rust(
-                creep_core::custom::CustomUse::by_name(eff.name())?,
-            ));
-            let mut free = base_free.clone();
-            let e = c.modifiers.len() - 1;
-            for (k, p) in eff.params().iter().enumerate() {
-                // parameters whose bounds are a reference value (lower bound > 0) stay fixed
-                if p.2 <= 0.0 {
-                    free.push(FreeParam::Modifier {
-                        effect: e,
-                        param: k,
-                    });
-                }
-            }
-            let h = heldout(&c, data, &labels, &free, threads, &opts)?;
-            let fitted = fit_params_with(&c, data, &free, threads, &opts, &|_| {})?;
-            candidates.push(Candidate {
-                effect: format!("Rust effect {}", eff.name()),
-                heldout_cv_rmse_pct: h,
-                fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
-                free: free.iter().map(|p| p.name(&c)).collect(),
-                explanation: format!(
-                    "{}. Adding this registered Rust effect and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %.",
-                    first_sentence(eff.description())
-                ),
-            });
-        }
-    }
-    // generic formula effects on extra columns with strong residual structure
-    if cfg.model != ModelKind::Polach {
-        let targets: &[Target] = if cfg.has(Effect::Coulomb) {
-            &[Target::Mu]
-        } else {
-            &[Target::TauC2, Target::TauC1]
-        };
-        for cr in corr
-            .iter()
-            .filter(|c| data.extra_names.contains(&c.variable) && c.r.abs() >= STRONG)
-            .take(2)
-        {
-            let k = data
-                .extra_names
-                .iter()
-                .position(|n| *n == cr.variable)
-                .unwrap_or(0);
-            let x: Vec<f64> = data.rows.iter().map(|r| r.extra[k]).collect();
-            let mean = x.iter().sum::<f64>() / x.len() as f64;
-            let sd = (x.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / x.len() as f64)
-                .sqrt()
-                .max(1e-12);
-            for &t in targets {
-                progress(&format!("formula on {} ({})", cr.variable, t.name()));
-                let name = format!("{}_by_{}", t.name(), cr.variable);
-                let factor = format!("exp(k * ({} - {mean}) / {sd})", cr.variable);
-                let k = FormulaParam {
-                    name: "k".into(),
-                    value: 0.0,
-                    min: -3.0,
-                    max: 3.0,
-                };
-                let fe = FormulaEffect::new(&name, t, &factor, vec![k])?;
-                let mut c = cfg.clone();
-                c.modifiers.push(creep_core::AnyModifier::Formula(fe));
-                let mut free = base_free.clone();
-                free.push(FreeParam::Modifier {
-                    effect: c.modifiers.len() - 1,
-                    param: 0,
-                });
-                let h = heldout(&c, data, &labels, &free, threads, &opts)?;
-                let fitted = fit_params_with(&c, data, &free, threads, &opts, &|_| {})?;
-                let kfit = fitted.params.last().map(|p| p.value).unwrap_or(0.0);
-                candidates.push(Candidate {
-                    effect: format!("formula: {} x exp(k ({} - {mean:.4}) / {sd:.4})", t.name(), cr.variable),
-                    heldout_cv_rmse_pct: h,
-                    fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
-                    free: free.iter().map(|p| p.name(&c)).collect(),
-                    explanation: format!(
-                        "No catalogue effect uses the column '{}', but the residuals follow it (r = {:+.2}). A generic formula effect scaling {} by exp(k (x - mean)/sd) (fitted k = {kfit:+.3}) takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %. Look for the physical mechanism behind this column, then write it as a formula effect or an effect in Rust.",
-                        cr.variable, cr.r, t.name()
-                    ),
-                });
-            }
-        }
-    }
+    let base = Baseline {
+        cfg,
+        data,
+        threads,
+        opts: &opts,
+        corr: &corr,
+        labels: &labels,
+        folds_by: &folds_by,
+        free: &base_free,
+        heldout: base_heldout,
+    };
+    let (mut candidates, catalogue_all_on) = base.catalogue(progress)?;
+    let (rust, untried) = base.rust_effects(progress)?;
+    candidates.extend(rust);
+    candidates.extend(base.formulas(progress)?);
     candidates.sort_by(|a, b| a.heldout_cv_rmse_pct.total_cmp(&b.heldout_cv_rmse_pct));
     let missing = candidates
         .first()
         .filter(|c| c.heldout_cv_rmse_pct < (1.0 - CLAIM_FRACTION) * base_heldout)
         .map(|c| c.effect.clone());
-    // the strongest correlation with something the user can act on: a data column or an
-    // operating variable, not a model output
-    let strongest_extra = corr.iter().find(|c| data.extra_names.contains(&c.variable));
-    let mut preface = String::new();
-    if catalogue_all_on {
-        preface += "Every catalogue effect is already in the configuration; ";
-        preface += if candidates.is_empty() {
-            "there is nothing to try, so the residual correlations are the evidence. "
-        } else {
-            "only the candidates below were tried. "
-        };
-    }
-    if !untried.is_empty() {
-        preface += &format!("Not tried: {}. ", untried.join(", "));
-    }
-    let hint = match strongest_extra {
-        Some(c) if c.r.abs() >= STRONG => format!(
-            " The data column '{}' follows the residuals (r = {:+.2}): try a formula effect on it.",
-            c.variable, c.r
-        ),
-        _ => String::new(),
-    };
-    let verdict = match &missing {
-        Some(m) => format!(
-            "Missing effect: {m}. With it the held-out CV(RMSE) falls from {base_heldout:.2} % to {:.2} %; the strongest residual correlation of the configuration as given is with {} (r = {:+.2}).",
-            candidates[0].heldout_cv_rmse_pct, corr[0].variable, corr[0].r
-        ),
-        None if candidates.is_empty() => format!(
-            "No candidate to try. Strongest residual correlation: {} (r = {:+.2}).{hint}",
-            corr.first().map(|c| c.variable.as_str()).unwrap_or("-"),
-            corr.first().map(|c| c.r).unwrap_or(0.0)
-        ),
-        None => format!(
-            "No missing effect claimed: no candidate lowers the held-out CV(RMSE) ({base_heldout:.2} %) by {:.0} % or more. Strongest residual correlation: {} (r = {:+.2}).{hint}",
-            CLAIM_FRACTION * 100.0,
-            corr.first().map(|c| c.variable.as_str()).unwrap_or("-"),
-            corr.first().map(|c| c.r).unwrap_or(0.0)
-        ),
-    };
-    let verdict = format!("{preface}{verdict}");
+    let verdict = claim_words(
+        data,
+        &candidates,
+        &corr,
+        missing.as_deref(),
+        catalogue_all_on,
+        &untried,
+        base_heldout,
+    );
     // the best model against the noise of the data
     let noise = crate::noise::estimate(data);
     let (best_model, best_heldout) = match candidates.first() {
@@ -592,18 +613,8 @@ fn run(
         .filter(|n| n.cv_rmse_pct > 0.0)
         .map(|n| best_heldout / n.cv_rmse_pct);
     let at_noise = times_noise.map(|t| t <= AT_NOISE);
-    let noise_words = match (&noise, times_noise) {
-        (Some(n), Some(t)) if t <= AT_NOISE => format!(
-            " The best model ({best_model}, held-out {best_heldout:.2} %) is at the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): nothing more is missing that these data can show.",
-            n.cv_rmse_pct, n.sd_f, n.method
-        ),
-        (Some(n), Some(t)) => format!(
-            " The best model ({best_model}, held-out {best_heldout:.2} %) is still {t:.1} times the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): something is still missing. Besides data columns, a formula effect can use the operating point (v_mps, fn_kN, cx, cy, spin_per_m) and the local state (p_GPa, T_C, u_mm, slip_mps) to scale tau_c1, tau_c2, L_e, L_p or mu (docs/measurements.md).",
-            n.cv_rmse_pct, n.sd_f, n.method
-        ),
-        _ => " The noise level of the data could not be estimated (no repeated operating points, no curve of five points or more): whether something is still missing cannot be said.".to_string(),
-    };
-    let mut verdict = format!("{verdict}{noise_words}");
+    let mut verdict =
+        verdict + &noise_words(noise.as_ref(), times_noise, &best_model, best_heldout);
     // no catalogue effect reaches the noise: search formula forms
     let search = if cfg.model != ModelKind::Polach && at_noise != Some(true) && search_seconds > 0.0
     {
@@ -621,33 +632,7 @@ fn run(
             search_seconds,
             progress,
         )?;
-        let bound = if s.tried < s.total {
-            format!(", stopped by the time bound of {search_seconds:.0} s")
-        } else {
-            String::new()
-        };
-        let head = format!(
-            " Search of formula forms: {} of {} tried in {:.0} s{bound}.",
-            s.tried, s.total, s.seconds
-        );
-        verdict += &head;
-        verdict += &match (&s.proposed, s.forms.first()) {
-            (Some(f), _) => {
-                let times = noise
-                    .as_ref()
-                    .map(|n| format!(" ({:.1} times the noise level)", f.heldout_cv_rmse_pct / n.cv_rmse_pct))
-                    .unwrap_or_default();
-                format!(
-                    " Proposed: {} x {} in {} (factor {}), k = {:.4} ± {:.4}: held-out CV(RMSE) {:.2} % against {best_heldout:.2} %{times}. The configuration with it, fitted on all rows, is in proposed_config (ecf diagnose --out FILE writes it; ecf fit and the FMU take it as is).",
-                    f.target, f.shape, f.variable, f.factor, f.k, f.k_stderr, f.heldout_cv_rmse_pct
-                )
-            }
-            (None, Some(f)) => format!(
-                " None beats the best model by more than the noise on the held-out folds (best form: {} x {} in {}, held-out {:.2} % against {best_heldout:.2} %): no form is proposed.",
-                f.target, f.shape, f.variable, f.heldout_cv_rmse_pct
-            ),
-            (None, None) => " No form could be evaluated: no form is proposed.".to_string(),
-        };
+        verdict += &search_words(&s, noise.as_ref(), best_heldout, search_seconds);
         Some(s)
     } else {
         None
@@ -670,4 +655,110 @@ fn run(
         search,
         warnings,
     })
+}
+
+/// The verdict's first part: what was not tried, and the missing effect claimed or why none is.
+fn claim_words(
+    data: &Dataset,
+    candidates: &[Candidate],
+    corr: &[Correlation],
+    missing: Option<&str>,
+    catalogue_all_on: bool,
+    untried: &[String],
+    base_heldout: f64,
+) -> String {
+    // the strongest correlation with something the user can act on: a data column or an
+    // operating variable, not a model output
+    let strongest_extra = corr.iter().find(|c| data.extra_names.contains(&c.variable));
+    let mut preface = String::new();
+    if catalogue_all_on {
+        preface += "Every catalogue effect is already in the configuration; ";
+        preface += if candidates.is_empty() {
+            "there is nothing to try, so the residual correlations are the evidence. "
+        } else {
+            "only the candidates below were tried. "
+        };
+    }
+    if !untried.is_empty() {
+        preface += &format!("Not tried: {}. ", untried.join(", "));
+    }
+    let hint = match strongest_extra {
+        Some(c) if c.r.abs() >= STRONG => format!(
+            " The data column '{}' follows the residuals (r = {:+.2}): try a formula effect on it.",
+            c.variable, c.r
+        ),
+        _ => String::new(),
+    };
+    let verdict = match missing {
+        Some(m) => format!(
+            "Missing effect: {m}. With it the held-out CV(RMSE) falls from {base_heldout:.2} % to {:.2} %; the strongest residual correlation of the configuration as given is with {} (r = {:+.2}).",
+            candidates[0].heldout_cv_rmse_pct, corr[0].variable, corr[0].r
+        ),
+        None if candidates.is_empty() => format!(
+            "No candidate to try. Strongest residual correlation: {} (r = {:+.2}).{hint}",
+            corr.first().map(|c| c.variable.as_str()).unwrap_or("-"),
+            corr.first().map(|c| c.r).unwrap_or(0.0)
+        ),
+        None => format!(
+            "No missing effect claimed: no candidate lowers the held-out CV(RMSE) ({base_heldout:.2} %) by {:.0} % or more. Strongest residual correlation: {} (r = {:+.2}).{hint}",
+            CLAIM_FRACTION * 100.0,
+            corr.first().map(|c| c.variable.as_str()).unwrap_or("-"),
+            corr.first().map(|c| c.r).unwrap_or(0.0)
+        ),
+    };
+    format!("{preface}{verdict}")
+}
+
+/// The verdict's part on the best model against the noise level of the data.
+fn noise_words(
+    noise: Option<&crate::noise::Noise>,
+    times_noise: Option<f64>,
+    best_model: &str,
+    best_heldout: f64,
+) -> String {
+    match (noise, times_noise) {
+        (Some(n), Some(t)) if t <= AT_NOISE => format!(
+            " The best model ({best_model}, held-out {best_heldout:.2} %) is at the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): nothing more is missing that these data can show.",
+            n.cv_rmse_pct, n.sd_f, n.method
+        ),
+        (Some(n), Some(t)) => format!(
+            " The best model ({best_model}, held-out {best_heldout:.2} %) is still {t:.1} times the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): something is still missing. Besides data columns, a formula effect can use the operating point (v_mps, fn_kN, cx, cy, spin_per_m) and the local state (p_GPa, T_C, u_mm, slip_mps) to scale tau_c1, tau_c2, L_e, L_p or mu (docs/measurements.md).",
+            n.cv_rmse_pct, n.sd_f, n.method
+        ),
+        _ => " The noise level of the data could not be estimated (no repeated operating points, no curve of five points or more): whether something is still missing cannot be said.".to_string(),
+    }
+}
+
+/// The verdict's part on the search of formula forms: how far it got and what it proposes.
+fn search_words(
+    s: &crate::search::Search,
+    noise: Option<&crate::noise::Noise>,
+    best_heldout: f64,
+    search_seconds: f64,
+) -> String {
+    let bound = if s.tried < s.total {
+        format!(", stopped by the time bound of {search_seconds:.0} s")
+    } else {
+        String::new()
+    };
+    let head = format!(
+        " Search of formula forms: {} of {} tried in {:.0} s{bound}.",
+        s.tried, s.total, s.seconds
+    );
+    head + &match (&s.proposed, s.forms.first()) {
+        (Some(f), _) => {
+            let times = noise
+                .map(|n| format!(" ({:.1} times the noise level)", f.heldout_cv_rmse_pct / n.cv_rmse_pct))
+                .unwrap_or_default();
+            format!(
+                " Proposed: {} x {} in {} (factor {}), k = {:.4} ± {:.4}: held-out CV(RMSE) {:.2} % against {best_heldout:.2} %{times}. The configuration with it, fitted on all rows, is in proposed_config (ecf diagnose --out FILE writes it; ecf fit and the FMU take it as is).",
+                f.target, f.shape, f.variable, f.factor, f.k, f.k_stderr, f.heldout_cv_rmse_pct
+            )
+        }
+        (None, Some(f)) => format!(
+            " None beats the best model by more than the noise on the held-out folds (best form: {} x {} in {}, held-out {:.2} % against {best_heldout:.2} %): no form is proposed.",
+            f.target, f.shape, f.variable, f.heldout_cv_rmse_pct
+        ),
+        (None, None) => " No form could be evaluated: no form is proposed.".to_string(),
+    }
 }

@@ -1,6 +1,7 @@
 //! Runs a configuration over a measurement file and compares: per-row predictions, CV(RMSE) overall, per group and per creepage regime.
 
 use crate::measure::{Dataset, Row};
+use crate::stats::Residuals;
 use creep_core::config::{Config, Geometry};
 use creep_core::error::{CreepError, Result};
 use creep_core::model::Model;
@@ -402,16 +403,22 @@ pub fn warnings_text(ws: &[ModelWarning]) -> String {
     s
 }
 
-/// Predictions and, per row, the warnings the model raised for it (none for points looked up
-/// in the memo).
-fn predict_inner(
-    cfg: &Config,
-    data: &Dataset,
-    threads: usize,
-    memo: Option<&Memo>,
-) -> Result<(Vec<Prediction>, Vec<Vec<String>>)> {
-    check_columns(cfg, data)?;
-    let cfg_id = memo.map(|m| m.config_id(cfg));
+/// The work of one prediction: a job per unique steady operating point not in the memo and
+/// per time series, and where each row's prediction comes from.
+struct Plan {
+    jobs: Vec<Job>,
+    /// The unique operating point of each steady row (`usize::MAX` for time-series rows).
+    of_row: Vec<usize>,
+    /// Each unique point's key (with a memo only).
+    keys: Vec<Vec<u64>>,
+    /// Each unique point's prediction, where the memo has it.
+    by_point: Vec<Option<Prediction>>,
+}
+
+/// Plans the prediction of `data`: unique steady points (looked up in `memo` under `cfg_id`)
+/// and the time series sorted by time; an error where a formula or Rust factor is not finite
+/// and >= 0 at a row's operating point.
+fn plan(cfg: &Config, data: &Dataset, memo: Option<&Memo>, cfg_id: Option<usize>) -> Result<Plan> {
     // extra columns that change the model: those the effects use
     let used: Vec<usize> = (0..data.extra_names.len())
         .filter(|&k| {
@@ -473,7 +480,6 @@ fn predict_inner(
             ),
         });
     }
-    drop(unique);
     for (_, mut idx) in series {
         idx.sort_by(|a, b| {
             data.rows[*a]
@@ -483,13 +489,24 @@ fn predict_inner(
         });
         jobs.push(Job::Series(idx));
     }
+    Ok(Plan {
+        jobs,
+        of_row,
+        keys,
+        by_point,
+    })
+}
+
+/// The predictions and warnings of each worker (jobs dealt round-robin to `threads` threads).
+type Done = (Vec<(usize, Prediction)>, Vec<(usize, Vec<String>)>);
+
+/// Runs the jobs on up to `threads` scoped threads.
+fn run_jobs(cfg: &Config, data: &Dataset, jobs: &[Job], threads: usize) -> Vec<Result<Done>> {
     let threads = threads.clamp(1, 64).min(jobs.len().max(1));
-    type Done = (Vec<(usize, Prediction)>, Vec<(usize, Vec<String>)>);
     let mut results: Vec<Result<Done>> = Vec::new();
     std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
-                let jobs = &jobs;
                 s.spawn(move || {
                     let mut cache = BTreeMap::new();
                     let mut out = Vec::new();
@@ -508,6 +525,27 @@ fn predict_inner(
             );
         }
     });
+    results
+}
+
+/// Predictions and, per row, the warnings the model raised for it (none for points looked up
+/// in the memo).
+fn predict_inner(
+    cfg: &Config,
+    data: &Dataset,
+    threads: usize,
+    memo: Option<&Memo>,
+) -> Result<(Vec<Prediction>, Vec<Vec<String>>)> {
+    check_columns(cfg, data)?;
+    let cfg_id = memo.map(|m| m.config_id(cfg));
+    let Plan {
+        jobs,
+        of_row,
+        keys,
+        mut by_point,
+        ..
+    } = plan(cfg, data, memo, cfg_id)?;
+    let results = run_jobs(cfg, data, &jobs, threads);
     let mut pred = vec![Prediction::default(); data.rows.len()];
     let looked_up = by_point.iter().filter(|p| p.is_some()).count();
     let mut computed = Vec::new();
@@ -539,35 +577,49 @@ fn predict_inner(
             pred[i] = by_point[of_row[i]].unwrap_or_default();
         }
     }
+    check_finite(cfg, data, &pred)?;
+    Ok((pred, warnings_per_row(data, &of_row, warned)))
+}
+
+/// An error naming the lines where the model's traction coefficient is not finite.
+fn check_finite(cfg: &Config, data: &Dataset, pred: &[Prediction]) -> Result<()> {
     let nonfinite: Vec<usize> = data
         .rows
         .iter()
-        .zip(&pred)
+        .zip(pred)
         .filter(|(_, p)| !p.f.is_finite())
         .map(|(r, _)| r.line)
         .collect();
-    if !nonfinite.is_empty() {
-        let mut who = format!(
-            "model {} with effects {:?}",
-            cfg.model.name(),
-            cfg.effects
-                .to_vec()
-                .iter()
-                .map(|e| creep_core::effects::info(*e).name)
-                .collect::<Vec<_>>()
-        );
-        for m in &cfg.modifiers {
-            who += &format!(", {}", m.describe());
-        }
-        return Err(CreepError::Data {
-            source_name: data.source.clone(),
-            message: format!(
-                "the {who} gives a non-finite traction coefficient at line(s) {}",
-                lines_text(&nonfinite)
-            ),
-        });
+    if nonfinite.is_empty() {
+        return Ok(());
     }
-    // a steady point's warnings hold for every row of that point
+    let mut who = format!(
+        "model {} with effects {:?}",
+        cfg.model.name(),
+        cfg.effects
+            .to_vec()
+            .iter()
+            .map(|e| creep_core::effects::info(*e).name)
+            .collect::<Vec<_>>()
+    );
+    for m in &cfg.modifiers {
+        who += &format!(", {}", m.describe());
+    }
+    Err(CreepError::Data {
+        source_name: data.source.clone(),
+        message: format!(
+            "the {who} gives a non-finite traction coefficient at line(s) {}",
+            lines_text(&nonfinite)
+        ),
+    })
+}
+
+/// The model's warnings per row: a steady point's warnings hold for every row of that point.
+fn warnings_per_row(
+    data: &Dataset,
+    of_row: &[usize],
+    warned: Vec<(usize, Vec<String>)>,
+) -> Vec<Vec<String>> {
     let mut per_row: Vec<Vec<String>> = vec![Vec::new(); data.rows.len()];
     let mut per_point: std::collections::HashMap<usize, Vec<String>> = Default::default();
     for (i, w) in warned {
@@ -584,7 +636,7 @@ fn predict_inner(
             }
         }
     }
-    Ok((pred, per_row))
+    per_row
 }
 
 /// CV(RMSE) of one group of rows.
@@ -644,34 +696,14 @@ pub struct Comparison {
     pub groups: Vec<GroupStat>,
 }
 
-#[derive(Default, Clone, Copy)]
-struct Acc {
-    n: usize,
-    sq: f64,
-    meas: f64,
-    res: f64,
-}
-
-impl Acc {
-    fn add(&mut self, meas: f64, model: f64) {
-        self.n += 1;
-        self.sq += (model - meas) * (model - meas);
-        self.meas += meas;
-        self.res += model - meas;
-    }
-    fn stat(&self, by: &str, value: String) -> GroupStat {
-        let n = self.n as f64;
-        GroupStat {
-            by: by.into(),
-            value,
-            n: self.n,
-            cv_rmse_pct: if self.n == 0 {
-                f64::NAN
-            } else {
-                100.0 * (self.sq / n).sqrt() / (self.meas / n).abs()
-            },
-            mean_residual: if self.n == 0 { f64::NAN } else { self.res / n },
-        }
+/// One group's statistics, named.
+fn group_stat(acc: &Residuals, by: &str, value: String) -> GroupStat {
+    GroupStat {
+        by: by.into(),
+        value,
+        n: acc.n,
+        cv_rmse_pct: acc.cv_rmse_pct(),
+        mean_residual: acc.mean_residual(),
     }
 }
 
@@ -681,12 +713,12 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
     let mut groups = Vec::new();
     let reg = regimes(data);
     // per key: first-appearance order of the values and their accumulators
-    type TextKey<'a> = (Vec<String>, HashMap<&'a str, usize>, Vec<Acc>);
-    type NumKey = (Vec<f64>, HashMap<u64, usize>, Vec<Acc>);
+    type TextKey<'a> = (Vec<String>, HashMap<&'a str, usize>, Vec<Residuals>);
+    type NumKey = (Vec<f64>, HashMap<u64, usize>, Vec<Residuals>);
     let mut text_keys: [TextKey; 2] = Default::default();
     let mut num_keys: [NumKey; 2] = Default::default();
-    let mut regime = [Acc::default(); 3];
-    let (mut all, mut ge1) = (Acc::default(), Acc::default());
+    let mut regime = [Residuals::default(); 3];
+    let (mut all, mut ge1) = (Residuals::default(), Residuals::default());
     for (i, r) in data.rows.iter().enumerate() {
         let (m, y) = (r.f, pred[i].f);
         all.add(m, y);
@@ -706,7 +738,7 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
             let (names, idx, acc) = &mut text_keys[k];
             let j = *idx.entry(v).or_insert_with(|| {
                 names.push(v.to_string());
-                acc.push(Acc::default());
+                acc.push(Residuals::default());
                 names.len() - 1
             });
             acc[j].add(m, y);
@@ -715,7 +747,7 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
             let (vals, idx, acc) = &mut num_keys[k];
             let j = *idx.entry(v.to_bits()).or_insert_with(|| {
                 vals.push(v);
-                acc.push(Acc::default());
+                acc.push(Residuals::default());
                 vals.len() - 1
             });
             acc[j].add(m, y);
@@ -724,23 +756,23 @@ pub fn compare(data: &Dataset, pred: &[Prediction]) -> Comparison {
     for (k, by) in ["series", "condition"].into_iter().enumerate() {
         let (names, _, acc) = &text_keys[k];
         for (n, a) in names.iter().zip(acc) {
-            groups.push(a.stat(by, n.clone()));
+            groups.push(group_stat(a, by, n.clone()));
         }
     }
     for (k, by) in ["v_mps", "fn_kN"].into_iter().enumerate() {
         let (vals, _, acc) = &num_keys[k];
         for (v, a) in vals.iter().zip(acc) {
-            groups.push(a.stat(by, format!("{v}")));
+            groups.push(group_stat(a, by, format!("{v}")));
         }
     }
     for (k, rg) in ["R1", "R2", "R3"].into_iter().enumerate() {
         if regime[k].n > 0 {
-            groups.push(regime[k].stat("regime", rg.into()));
+            groups.push(group_stat(&regime[k], "regime", rg.into()));
         }
     }
     Comparison {
-        cv_rmse_pct: all.stat("all", String::new()).cv_rmse_pct,
-        cv_rmse_pct_cx_ge_1pct: ge1.stat("cx>=1%", "yes".into()).cv_rmse_pct,
+        cv_rmse_pct: all.cv_rmse_pct(),
+        cv_rmse_pct_cx_ge_1pct: ge1.cv_rmse_pct(),
         n: data.rows.len(),
         groups,
     }

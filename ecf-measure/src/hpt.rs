@@ -7,7 +7,8 @@
 //! pressure coefficients and the maximum values of the material laws (seed Sec. 5.1).
 
 use crate::fit::{fit_generic, FitResult, FreeParam};
-use crate::measure::{cv_rmse_pct, HptRow};
+use crate::measure::HptRow;
+use crate::stats::cv_rmse_pct;
 use creep_core::bristle::voce;
 use creep_core::config::Config;
 use creep_core::engine::layer_material;

@@ -2,8 +2,8 @@
 //!
 //! The loop of docs/measurements.md: [`measure`] reads files (CSV rows of creepage and
 //! measured traction, or high-pressure-torsion curves, [`hpt`]); [`evaluate`] predicts every
-//! row with creep-core's steady model and scores the difference (CV(RMSE), Eq. 2.9); [`fit`]
-//! fits free parameters by Levenberg-Marquardt with standard errors and correlations;
+//! row with creep-core's steady model and scores the difference (CV(RMSE), Eq. 2.9, and the
+//! other statistics in [`stats`]); [`fit`] fits free parameters by Levenberg-Marquardt with standard errors and correlations;
 //! [`diagnose`] tries the catalogue's effects and reports which lowers the held-out error.
 //! The physics crate creep-core and the FMU do not depend on this crate.
 #![forbid(unsafe_code)]
@@ -16,3 +16,4 @@ pub mod hpt;
 pub mod measure;
 pub mod noise;
 pub mod search;
+pub mod stats;

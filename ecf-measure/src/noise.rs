@@ -12,6 +12,7 @@
 //! follows.
 
 use crate::measure::Dataset;
+use crate::stats::{cv_pct, mean, median};
 
 /// Median of a squared standard normal variate.
 const MEDIAN_CHI2_1: f64 = 0.454_936_4;
@@ -35,8 +36,8 @@ pub struct Noise {
 /// Estimates the noise of `data`; `None` when the file has neither enough repeats nor curves
 /// of five points or more.
 pub fn estimate(data: &Dataset) -> Option<Noise> {
-    let mean = data.rows.iter().map(|r| r.f).sum::<f64>() / data.rows.len().max(1) as f64;
-    let cv = |sd: f64| 100.0 * sd / mean.abs();
+    let mean_f = mean(&data.rows.iter().map(|r| r.f).collect::<Vec<_>>());
+    let cv = |sd: f64| cv_pct(sd, mean_f);
     if let Some((sd, dof)) = repeats(data) {
         return Some(Noise {
             sd_f: sd,
@@ -73,7 +74,7 @@ fn repeats(data: &Dataset) -> Option<(f64, usize)> {
     }
     let (mut ss, mut dof) = (0.0, 0);
     for g in groups.values().filter(|g| g.len() > 1) {
-        let m = g.iter().sum::<f64>() / g.len() as f64;
+        let m = mean(g);
         ss += g.iter().map(|y| (y - m) * (y - m)).sum::<f64>();
         dof += g.len() - 1;
     }
@@ -134,12 +135,6 @@ fn along_curves(data: &Dataset) -> Option<(f64, usize)> {
     if e2.len() < MIN_DOF {
         return None;
     }
-    e2.sort_by(f64::total_cmp);
     let n = e2.len();
-    let med = if n % 2 == 1 {
-        e2[n / 2]
-    } else {
-        0.5 * (e2[n / 2 - 1] + e2[n / 2])
-    };
-    Some(((med / MEDIAN_CHI2_1).sqrt(), n))
+    Some(((median(&mut e2) / MEDIAN_CHI2_1).sqrt(), n))
 }

@@ -17,8 +17,8 @@
 use crate::diagnose::{heldout, subset};
 use crate::evaluate::{predict_with, Prediction};
 use crate::fit::{fit_params_with, FitOptions, FreeParam};
-use crate::measure::cv_rmse_pct;
 use crate::measure::Dataset;
+use crate::stats::{cv_rmse_pct, mean_sd};
 use creep_core::config::Config;
 use creep_core::effects::Effect;
 use creep_core::error::Result;
@@ -94,13 +94,6 @@ struct Var {
     positive: bool,
 }
 
-fn stats(x: &[f64]) -> (f64, f64) {
-    let n = x.len().max(1) as f64;
-    let m = x.iter().sum::<f64>() / n;
-    let s = (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / n).sqrt();
-    (m, s)
-}
-
 fn variables(data: &Dataset, pred: &[Prediction]) -> Vec<Var> {
     let mut v: Vec<(String, String, Vec<f64>)> = vec![
         (
@@ -143,7 +136,7 @@ fn variables(data: &Dataset, pred: &[Prediction]) -> Vec<Var> {
     }
     v.into_iter()
         .filter_map(|(expr, corr, x)| {
-            let (r, s) = stats(&x);
+            let (r, s) = mean_sd(&x);
             // four significant digits: the factor is written into the configuration
             let sig = |v: f64| {
                 if v == 0.0 || !v.is_finite() {
@@ -223,158 +216,23 @@ pub(crate) fn search(
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Search> {
     let t0 = std::time::Instant::now();
-    let targets: Vec<Target> = if cfg.has(Effect::Coulomb) {
-        vec![Target::Mu]
-    } else {
-        let mut t = vec![Target::TauC1, Target::TauC2, Target::Lp];
-        if cfg.has(Effect::LayerElasticity) {
-            t.push(Target::Le);
-        }
-        t
-    };
-    let mut vars = variables(data, pred);
-    let strength = |v: &Var| {
-        corr.iter()
-            .find(|c| c.variable == v.corr)
-            .map(|c| c.r.abs())
-            .unwrap_or(0.0)
-    };
-    vars.sort_by(|a, b| strength(b).total_cmp(&strength(a)));
-    let mut plan: Vec<(Target, &Var, &'static str, String)> = Vec::new();
-    for v in &vars {
-        for &t in &targets {
-            for (shape, factor) in shapes(v) {
-                plan.push((t, v, shape, factor));
-            }
-        }
-    }
+    let vars = ranked_variables(data, pred, corr);
+    let plan = plan(&vars, &targets(cfg));
     let total = plan.len();
-    let with_form = |t: Target, factor: &str| with_form_on(cfg, base_free, t, factor);
-    // the baseline fitted on each training fold, once
-    let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
-    let mut folds: Vec<(Dataset, Dataset, Config)> = Vec::new();
-    for f in 0..nf {
-        let train = subset(data, &labels.iter().map(|l| *l != f).collect::<Vec<_>>());
-        let test = subset(data, &labels.iter().map(|l| *l == f).collect::<Vec<_>>());
-        if test.rows.is_empty() {
-            continue;
-        }
-        let c = if base_free.is_empty() || train.rows.len() <= base_free.len() + 1 {
-            cfg.clone()
-        } else {
-            crate::fit::fitted_or_kept(cfg, &train, base_free, threads, opts)?
-        };
-        folds.push((train, test, c));
-    }
-    // no memo for the screening: every form's configurations are new, so its points would
-    // only be stored, never looked up again (the memory would grow with the forms)
-    let screen_opts = FitOptions {
-        tolerance: Some(SCREEN_TOLERANCE),
-        memo: None,
-        ..*opts
+    let s = Searcher {
+        cfg,
+        data,
+        labels,
+        base_free,
+        threads,
+        opts,
+        t0,
+        budget_s,
+        progress,
     };
-    let screen = |t: Target, factor: &str| -> Result<f64> {
-        let mut meas = Vec::new();
-        let mut model = Vec::new();
-        for (train, test, c) in &folds {
-            let (c, _) = with_form_on(c, base_free, t, factor)?;
-            let k = [FreeParam::Modifier {
-                effect: c.modifiers.len() - 1,
-                param: 0,
-            }];
-            let fitted = crate::fit::fitted_or_kept(&c, train, &k, threads, &screen_opts)?;
-            let p = predict_with(&fitted, test, threads, None)?;
-            meas.extend(test.rows.iter().map(|r| r.f));
-            model.extend(p.iter().map(|p| p.f));
-        }
-        Ok(cv_rmse_pct(&meas, &model))
-    };
-    let mut forms: Vec<Form> = Vec::new();
-    let mut tried = 0;
-    for (i, (t, v, shape, factor)) in plan.iter().enumerate() {
-        if t0.elapsed().as_secs_f64() > 0.6 * budget_s {
-            break;
-        }
-        tried += 1;
-        progress(&format!(
-            "form {}/{total}: {} x {shape}({})",
-            i + 1,
-            t.name(),
-            v.expr
-        ));
-        // a form the model cannot evaluate (a factor out of range at some row) is passed over
-        let Ok(h) = screen(*t, factor) else {
-            continue;
-        };
-        if !h.is_finite() {
-            continue;
-        }
-        forms.push(Form {
-            target: t.name().to_string(),
-            variable: v.expr.clone(),
-            shape: shape.to_string(),
-            factor: factor.clone(),
-            screen_cv_rmse_pct: h,
-            heldout_cv_rmse_pct: f64::NAN,
-            k: f64::NAN,
-            k_stderr: f64::NAN,
-            fitted_cv_rmse_pct: f64::NAN,
-        });
-    }
-    forms.sort_by(|a, b| a.screen_cv_rmse_pct.total_cmp(&b.screen_cv_rmse_pct));
-    // the best screened forms on the same folds with every free parameter, as the catalogue's
-    for (j, f) in forms.iter_mut().take(REFIT_HELDOUT).enumerate() {
-        if j > 0 && t0.elapsed().as_secs_f64() > budget_s {
-            break;
-        }
-        progress(&format!(
-            "the best forms on the folds with every free parameter ({}/{REFIT_HELDOUT})",
-            j + 1
-        ));
-        let t = Target::parse(&f.target)?;
-        let (c, free) = with_form(t, &f.factor)?;
-        if let Ok(h) = heldout(&c, data, labels, &free, threads, opts) {
-            f.heldout_cv_rmse_pct = h;
-        }
-    }
-    let key = |f: &Form| {
-        if f.heldout_cv_rmse_pct.is_finite() {
-            (0, f.heldout_cv_rmse_pct)
-        } else {
-            (1, f.screen_cv_rmse_pct)
-        }
-    };
-    forms.sort_by(|a, b| {
-        let (ka, kb) = (key(a), key(b));
-        ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
-    });
-    // the best few on all rows, with the standard error of k
-    let mut proposed_config = None;
-    let full = FitOptions {
-        skip_uncertainties: false,
-        ..*opts
-    };
-    for (j, f) in forms.iter_mut().take(REFIT_BEST).enumerate() {
-        if j > 0 && t0.elapsed().as_secs_f64() > budget_s {
-            break;
-        }
-        progress(&format!(
-            "refitting the best forms on all rows ({}/{REFIT_BEST})",
-            j + 1
-        ));
-        let t = Target::parse(&f.target)?;
-        let (c, free) = with_form(t, &f.factor)?;
-        if let Ok(r) = fit_params_with(&c, data, &free, threads, &full, &|_| {}) {
-            if let Some(p) = r.params.last() {
-                f.k = p.value;
-                f.k_stderr = p.stderr;
-            }
-            f.fitted_cv_rmse_pct = r.cv_rmse_pct_after;
-            if j == 0 {
-                proposed_config = Some(r.config.to_json());
-            }
-        }
-    }
+    let (mut forms, tried) = s.screen(&plan)?;
+    s.heldout_best(&mut forms)?;
+    let mut proposed_config = s.refit_best(&mut forms)?;
     let margin_ok = |h: f64| match noise_cv {
         Some(n) => h < best_heldout - n,
         None => h < (1.0 - crate::diagnose::CLAIM_FRACTION) * best_heldout,
@@ -396,4 +254,220 @@ pub(crate) fn search(
         proposed,
         proposed_config,
     })
+}
+
+/// The material functions a form may scale: mu for Coulomb, else the layer's strengths and
+/// hardening scale (and L_e with elasticity on).
+fn targets(cfg: &Config) -> Vec<Target> {
+    if cfg.has(Effect::Coulomb) {
+        vec![Target::Mu]
+    } else {
+        let mut t = vec![Target::TauC1, Target::TauC2, Target::Lp];
+        if cfg.has(Effect::LayerElasticity) {
+            t.push(Target::Le);
+        }
+        t
+    }
+}
+
+/// The variables, strongest residual correlation first.
+fn ranked_variables(
+    data: &Dataset,
+    pred: &[Prediction],
+    corr: &[crate::diagnose::Correlation],
+) -> Vec<Var> {
+    let mut vars = variables(data, pred);
+    let strength = |v: &Var| {
+        corr.iter()
+            .find(|c| c.variable == v.corr)
+            .map(|c| c.r.abs())
+            .unwrap_or(0.0)
+    };
+    vars.sort_by(|a, b| strength(b).total_cmp(&strength(a)));
+    vars
+}
+
+/// One form to try: target, variable, shape and factor.
+type Planned<'v> = (Target, &'v Var, &'static str, String);
+
+/// Every form, variable by variable (in the order given), target by target, shape by shape.
+fn plan<'v>(vars: &'v [Var], targets: &[Target]) -> Vec<Planned<'v>> {
+    let mut plan = Vec::new();
+    for v in vars {
+        for &t in targets {
+            for (shape, factor) in shapes(v) {
+                plan.push((t, v, shape, factor));
+            }
+        }
+    }
+    plan
+}
+
+/// What every stage of one search shares: the data and folds, the baseline's free
+/// parameters, the options and the time bound.
+struct Searcher<'a> {
+    cfg: &'a Config,
+    data: &'a Dataset,
+    labels: &'a [usize],
+    base_free: &'a [FreeParam],
+    threads: usize,
+    opts: &'a FitOptions<'a>,
+    t0: std::time::Instant,
+    budget_s: f64,
+    progress: &'a (dyn Fn(&str) + Sync),
+}
+
+impl Searcher<'_> {
+    fn elapsed(&self) -> f64 {
+        self.t0.elapsed().as_secs_f64()
+    }
+
+    /// The baseline fitted on each training fold, once: (train, test, fitted configuration).
+    fn folds(&self) -> Result<Vec<(Dataset, Dataset, Config)>> {
+        let (cfg, data, labels, base_free) = (self.cfg, self.data, self.labels, self.base_free);
+        let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
+        let mut folds = Vec::new();
+        for f in 0..nf {
+            let train = subset(data, &labels.iter().map(|l| *l != f).collect::<Vec<_>>());
+            let test = subset(data, &labels.iter().map(|l| *l == f).collect::<Vec<_>>());
+            if test.rows.is_empty() {
+                continue;
+            }
+            let c = if base_free.is_empty() || train.rows.len() <= base_free.len() + 1 {
+                cfg.clone()
+            } else {
+                crate::fit::fitted_or_kept(cfg, &train, base_free, self.threads, self.opts)?
+            };
+            folds.push((train, test, c));
+        }
+        Ok(folds)
+    }
+
+    /// Screens the planned forms (k alone on the baseline's fold fits) until 60 % of the time
+    /// bound; the forms that could be evaluated, best first, and how many were tried.
+    fn screen(&self, plan: &[Planned]) -> Result<(Vec<Form>, usize)> {
+        let (base_free, threads) = (self.base_free, self.threads);
+        let folds = self.folds()?;
+        // no memo for the screening: every form's configurations are new, so its points would
+        // only be stored, never looked up again (the memory would grow with the forms)
+        let screen_opts = FitOptions {
+            tolerance: Some(SCREEN_TOLERANCE),
+            memo: None,
+            ..*self.opts
+        };
+        let screen = |t: Target, factor: &str| -> Result<f64> {
+            let mut meas = Vec::new();
+            let mut model = Vec::new();
+            for (train, test, c) in &folds {
+                let (c, _) = with_form_on(c, base_free, t, factor)?;
+                let k = [FreeParam::Modifier {
+                    effect: c.modifiers.len() - 1,
+                    param: 0,
+                }];
+                let fitted = crate::fit::fitted_or_kept(&c, train, &k, threads, &screen_opts)?;
+                let p = predict_with(&fitted, test, threads, None)?;
+                meas.extend(test.rows.iter().map(|r| r.f));
+                model.extend(p.iter().map(|p| p.f));
+            }
+            Ok(cv_rmse_pct(&meas, &model))
+        };
+        let total = plan.len();
+        let mut forms: Vec<Form> = Vec::new();
+        let mut tried = 0;
+        for (i, (t, v, shape, factor)) in plan.iter().enumerate() {
+            if self.elapsed() > 0.6 * self.budget_s {
+                break;
+            }
+            tried += 1;
+            (self.progress)(&format!(
+                "form {}/{total}: {} x {shape}({})",
+                i + 1,
+                t.name(),
+                v.expr
+            ));
+            // a form the model cannot evaluate (a factor out of range at some row) is passed over
+            let Ok(h) = screen(*t, factor) else {
+                continue;
+            };
+            if !h.is_finite() {
+                continue;
+            }
+            forms.push(Form {
+                target: t.name().to_string(),
+                variable: v.expr.clone(),
+                shape: shape.to_string(),
+                factor: factor.clone(),
+                screen_cv_rmse_pct: h,
+                heldout_cv_rmse_pct: f64::NAN,
+                k: f64::NAN,
+                k_stderr: f64::NAN,
+                fitted_cv_rmse_pct: f64::NAN,
+            });
+        }
+        forms.sort_by(|a, b| a.screen_cv_rmse_pct.total_cmp(&b.screen_cv_rmse_pct));
+        Ok((forms, tried))
+    }
+
+    /// The best screened forms on the same folds with every free parameter, as the
+    /// catalogue's; then every form ranked: held-out errors first, then screened ones.
+    fn heldout_best(&self, forms: &mut [Form]) -> Result<()> {
+        for (j, f) in forms.iter_mut().take(REFIT_HELDOUT).enumerate() {
+            if j > 0 && self.elapsed() > self.budget_s {
+                break;
+            }
+            (self.progress)(&format!(
+                "the best forms on the folds with every free parameter ({}/{REFIT_HELDOUT})",
+                j + 1
+            ));
+            let t = Target::parse(&f.target)?;
+            let (c, free) = with_form_on(self.cfg, self.base_free, t, &f.factor)?;
+            if let Ok(h) = heldout(&c, self.data, self.labels, &free, self.threads, self.opts) {
+                f.heldout_cv_rmse_pct = h;
+            }
+        }
+        let key = |f: &Form| {
+            if f.heldout_cv_rmse_pct.is_finite() {
+                (0, f.heldout_cv_rmse_pct)
+            } else {
+                (1, f.screen_cv_rmse_pct)
+            }
+        };
+        forms.sort_by(|a, b| {
+            let (ka, kb) = (key(a), key(b));
+            ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+        });
+        Ok(())
+    }
+
+    /// The best few forms refitted on all rows with the standard error of k; the
+    /// configuration of the best one, as JSON.
+    fn refit_best(&self, forms: &mut [Form]) -> Result<Option<serde_json::Value>> {
+        let mut proposed_config = None;
+        let full = FitOptions {
+            skip_uncertainties: false,
+            ..*self.opts
+        };
+        for (j, f) in forms.iter_mut().take(REFIT_BEST).enumerate() {
+            if j > 0 && self.elapsed() > self.budget_s {
+                break;
+            }
+            (self.progress)(&format!(
+                "refitting the best forms on all rows ({}/{REFIT_BEST})",
+                j + 1
+            ));
+            let t = Target::parse(&f.target)?;
+            let (c, free) = with_form_on(self.cfg, self.base_free, t, &f.factor)?;
+            if let Ok(r) = fit_params_with(&c, self.data, &free, self.threads, &full, &|_| {}) {
+                if let Some(p) = r.params.last() {
+                    f.k = p.value;
+                    f.k_stderr = p.stderr;
+                }
+                f.fitted_cv_rmse_pct = r.cv_rmse_pct_after;
+                if j == 0 {
+                    proposed_config = Some(r.config.to_json());
+                }
+            }
+        }
+        Ok(proposed_config)
+    }
 }
