@@ -9,6 +9,8 @@
 #   bash scripts/bench.sh --only threads   transient on all cores vs one (not pinned)
 #   bash scripts/bench.sh --only accuracy [--finest 640]   errors of each grid and scheme against
 #       the extrapolated limit of transient responses, beside their cost (about 10 minutes; 640: longer)
+#   bash scripts/bench.sh --only consistency   drift of the steady state under transient steps at
+#       constant inputs, per preset, speed, grid and communication step (about 10 s)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p ecf-cli -p ecf-bench

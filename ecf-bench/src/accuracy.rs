@@ -37,8 +37,8 @@ pub enum Kind {
     Sine { mean: f64, amp: f64, f_hz: f64 },
 }
 
-const FN: f64 = 110e3;
-const A: f64 = 7.63e-3;
+pub(crate) const FN: f64 = 110e3;
+pub(crate) const A: f64 = 7.63e-3;
 const B: f64 = 7.88e-3;
 
 impl Case {
@@ -124,7 +124,8 @@ pub struct Response {
     pub wall: f64,
 }
 
-fn config(preset: &str, nx: usize, ny: usize) -> Config {
+/// The benchmark's configuration: `preset` on an `nx` x `ny` grid, semi-axes a, b at F_N.
+pub(crate) fn config(preset: &str, nx: usize, ny: usize) -> Config {
     let mut c = Config::preset(preset).expect("preset");
     c.grid = Grid { nx, ny };
     c.geometry = creep_core::config::Geometry::SemiAxes {

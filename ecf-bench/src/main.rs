@@ -1,7 +1,8 @@
 //! `ecf-bench`: cost of the ECF engine against a plain C FASTSIM, transient real-time factors and `ecf diagnose`, measured interleaved in one process (medians).
 //!
-//! Usage: ecf-bench [--quick] [--only steady|transient|diagnose|threads|accuracy] [--finest 320|640]
+//! Usage: ecf-bench [--quick] [--only steady|transient|diagnose|threads|accuracy|consistency] [--finest 320|640]
 mod accuracy;
+mod consistency;
 
 use creep_core::engine::Scheme;
 use creep_core::{Config, Grid, Inputs, Model};
@@ -316,8 +317,17 @@ fn main() {
         .and_then(|p| args.get(p + 1))
         .cloned();
     if let Some(o) = &only {
-        if !["steady", "transient", "diagnose", "threads", "accuracy"].contains(&o.as_str()) {
-            eprintln!("ecf-bench: --only takes steady, transient, diagnose, threads or accuracy (got '{o}')");
+        if ![
+            "steady",
+            "transient",
+            "diagnose",
+            "threads",
+            "accuracy",
+            "consistency",
+        ]
+        .contains(&o.as_str())
+        {
+            eprintln!("ecf-bench: --only takes steady, transient, diagnose, threads, accuracy or consistency (got '{o}')");
             std::process::exit(2);
         }
     }
@@ -337,7 +347,7 @@ fn main() {
     let run = |w: &str| {
         only.as_deref().is_none_or(|o| o == w)
             && w != "threads"
-            && (w != "accuracy" || quick || only.is_some())
+            && (!["accuracy", "consistency"].contains(&w) || quick || only.is_some())
     };
     if run("steady") {
         steady_table(quick);
@@ -350,6 +360,9 @@ fn main() {
     }
     if run("accuracy") {
         accuracy::table(quick, finest);
+    }
+    if run("consistency") {
+        consistency::table(quick);
     }
     // on request only: every other table runs pinned to one core
     if only.as_deref() == Some("threads") {
