@@ -6,7 +6,11 @@
 //! initialized, bit 1: rolling backwards; for a contact rolling backwards inputs, outputs
 //! and bristles are those of its mirrored frame), then for bristle models: nx u32, ny u32,
 //! kernel size u32, heads ny x u32, phases ny x f64, per bristle u(2) tau(2) sh temp q as
-//! 7 x f64 and regime u8, then the heat accumulators n x K x f64.
+//! 7 x f64 and regime u8, then the heat accumulators n x K x f64; from version 4 on, the
+//! bristles' committed states at their last lattice node in the same two layouts, then per
+//! strip the part of the current cell travelled since: distance (m), time (s) and the
+//! distance-weighted c_x, c_y (m) and spin (-) as 5 x f64 (the whole-cell commit,
+//! docs/model.md section 3).
 //!
 //! Values are stored by name, so a build with another input or output reads the state: a
 //! value the state lacks keeps its default, a name this build does not know is refused. The
@@ -20,7 +24,7 @@
 use crate::bristle::{BristleState, Regime};
 use crate::bytes::{Reader, Writer};
 use crate::engine::io::{INPUTS, OUTPUTS};
-use crate::engine::{Inputs, Outputs, OwnedRawState};
+use crate::engine::{Inputs, Outputs, OwnedRawState, Partial};
 use crate::error::{CreepError, Result};
 use crate::model::Model;
 use crate::params::{self, Params};
@@ -29,7 +33,7 @@ use serde_json::Value;
 
 const MAGIC: &[u8; 8] = b"ECFSTATE";
 /// Current version of the byte format.
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 
 type W = Writer;
 
@@ -190,6 +194,70 @@ fn same_config(saved: &str, now: &str) -> Result<bool> {
     Ok(a == b)
 }
 
+/// Writes bristle states (7 x f64 and the regime byte each) and then their accumulators.
+fn put_bristles(w: &mut W, st: &[BristleState], acc: &[[f64; N_KERNEL]]) {
+    for b in st {
+        for x in [b.u[0], b.u[1], b.tau[0], b.tau[1], b.sh, b.temp, b.q] {
+            w.f64(x);
+        }
+        w.u8(b.regime as u8);
+    }
+    for a in acc {
+        for x in a {
+            w.f64(*x);
+        }
+    }
+}
+
+/// Reads `nb` bristle states and then their accumulators (`what`: "" or "node ", for the
+/// messages), refusing non-finite values and unknown regimes.
+#[allow(clippy::type_complexity)]
+fn get_bristles(
+    r: &mut R,
+    nb: usize,
+    what: &str,
+) -> Result<(Vec<BristleState>, Vec<[f64; N_KERNEL]>)> {
+    let mut st = Vec::with_capacity(nb);
+    for _ in 0..nb {
+        let x: [f64; 7] = [r.f()?, r.f()?, r.f()?, r.f()?, r.f()?, r.f()?, r.f()?];
+        if x.iter().any(|v| !v.is_finite()) {
+            return Err(CreepError::State(format!(
+                "{what}bristle {} of the state holds a non-finite value ({x:?})",
+                st.len()
+            )));
+        }
+        let regime = match r.b()? {
+            0 => Regime::Elastic,
+            1 => Regime::Plastic,
+            2 => Regime::Sliding,
+            b => return Err(CreepError::State(format!("bad regime byte {b}"))),
+        };
+        st.push(BristleState {
+            u: [x[0], x[1]],
+            tau: [x[2], x[3]],
+            sh: x[4],
+            temp: x[5],
+            q: x[6],
+            regime,
+        });
+    }
+    let mut acc = Vec::with_capacity(nb);
+    for _ in 0..nb {
+        let mut a = [0.0; N_KERNEL];
+        for v in a.iter_mut() {
+            *v = r.f()?;
+            if !v.is_finite() {
+                return Err(CreepError::State(format!(
+                    "{what}heat history {} of the state holds {v}",
+                    acc.len()
+                )));
+            }
+        }
+        acc.push(a);
+    }
+    Ok((st, acc))
+}
+
 impl Model {
     /// Serializes the complete state.
     pub fn save_state(&self) -> Vec<u8> {
@@ -223,15 +291,11 @@ impl Model {
                 for p in s.phase {
                     w.f64(*p);
                 }
-                for b in s.st {
-                    for x in [b.u[0], b.u[1], b.tau[0], b.tau[1], b.sh, b.temp, b.q] {
+                put_bristles(&mut w, s.st, s.acc);
+                put_bristles(&mut w, s.node_st, s.node_acc);
+                for p in s.part {
+                    for x in [p.d, p.h, p.dcx, p.dcy, p.dcs] {
                         w.f64(x);
-                    }
-                    w.u8(b.regime as u8);
-                }
-                for a in s.acc {
-                    for x in a {
-                        w.f64(*x);
                     }
                 }
             }
@@ -310,44 +374,29 @@ impl Model {
                 for _ in 0..ny {
                     phase.push(r.f()?);
                 }
-                let mut st = Vec::with_capacity(nb);
-                for _ in 0..nb {
-                    let x: [f64; 7] = [r.f()?, r.f()?, r.f()?, r.f()?, r.f()?, r.f()?, r.f()?];
-                    if x.iter().any(|v| !v.is_finite()) {
-                        return Err(CreepError::State(format!(
-                            "bristle {} of the state holds a non-finite value ({x:?})",
-                            st.len()
-                        )));
-                    }
-                    let regime = match r.b()? {
-                        0 => Regime::Elastic,
-                        1 => Regime::Plastic,
-                        2 => Regime::Sliding,
-                        b => return Err(CreepError::State(format!("bad regime byte {b}"))),
-                    };
-                    st.push(BristleState {
-                        u: [x[0], x[1]],
-                        tau: [x[2], x[3]],
-                        sh: x[4],
-                        temp: x[5],
-                        q: x[6],
-                        regime,
-                    });
-                }
-                let mut acc = Vec::with_capacity(nb);
-                for _ in 0..nb {
-                    let mut a = [0.0; N_KERNEL];
-                    for v in a.iter_mut() {
-                        *v = r.f()?;
-                        if !v.is_finite() {
+                let (st, acc) = get_bristles(&mut r, nb, "")?;
+                let nodes = if v >= 4 {
+                    let (ns, na) = get_bristles(&mut r, nb, "node ")?;
+                    let mut part = Vec::with_capacity(ny);
+                    for j in 0..ny {
+                        let x = [r.f()?, r.f()?, r.f()?, r.f()?, r.f()?];
+                        if x.iter().any(|v| !v.is_finite()) || x[0] < 0.0 || x[1] < 0.0 {
                             return Err(CreepError::State(format!(
-                                "heat history {} of the state holds {v}",
-                                acc.len()
+                                "the part of the current cell of strip {j} is not a distance and a time ({x:?})"
                             )));
                         }
+                        part.push(Partial {
+                            d: x[0],
+                            h: x[1],
+                            dcx: x[2],
+                            dcy: x[3],
+                            dcs: x[4],
+                        });
                     }
-                    acc.push(a);
-                }
+                    Some((ns, na, part))
+                } else {
+                    None
+                };
                 if r.0.position() != data.len() {
                     return Err(CreepError::State(format!(
                         "{} trailing bytes",
@@ -361,6 +410,7 @@ impl Model {
                     phase,
                     st,
                     acc,
+                    nodes,
                     initialized: init,
                     out,
                     reversed,

@@ -1,4 +1,4 @@
-//! A serialized FMU state of format version 4 (written on branch issue-27 from main at e5dece1, before parameters and effects were stored by name) loads, keeps what the importer had set and continues as a fresh run of this build does (within the temperature solve's tolerance change since).
+//! A serialized FMU state of format version 4 (written on branch issue-27 from main at e5dece1, before parameters and effects were stored by name) loads, keeps what the importer had set and continues as a fresh run of this build does (within the discretisation changes since).
 
 mod common;
 use common::vr;
@@ -70,10 +70,13 @@ fn a_version_4_state_loads_and_continues() {
             let a = now.get_real(o).expect("output");
             let b = old.get_real(o).expect("output");
             // the fixture was written before the temperature solve's tolerance went from
-            // 1e-4 to 1e-10 (issue 25); a value read into the wrong place would be off by
-            // far more than 1e-5
+            // 1e-4 to 1e-10 (issue 25, up to 6e-7 here) and before the whole-cell commit
+            // (issue 24: its bristles sit in cut cells, which this build moves whole from
+            // a fresh run's node states, up to 1.3e-3 here at step 7); a value read into the
+            // wrong place would be off by far more than 1e-2, and what the importer set is
+            // compared exactly above
             assert!(
-                (a - b).abs() <= 1e-5 * a.abs().max(b.abs()) + 1e-9,
+                (a - b).abs() <= 1e-2 * a.abs().max(b.abs()) + 1e-9,
                 "step {k}: vr {o}: {a} vs {b}"
             );
         }

@@ -257,10 +257,22 @@ impl Contact {
         skip: usize,
         end: usize,
     ) {
+        let kin = self.kin(h, dist);
+        self.substep_strip_kin(sp, &kin, phase_end, skip, end);
+    }
+
+    /// [`Self::substep_strip`] with the sub-step's kinematics given.
+    pub(super) fn substep_strip_kin(
+        &self,
+        sp: &mut Strip,
+        kin: &Kin,
+        phase_end: f64,
+        skip: usize,
+        end: usize,
+    ) {
         let (nx, j) = (self.nx, sp.j);
         let dxi = 2.0 * self.ell[j] / nx as f64;
-        let kin = self.kin(h, dist);
-        let fac = self.factors(sp.fac, h, kin.heat);
+        let fac = self.factors(sp.fac, kin.h, kin.heat);
         let inside = if phase_end > 0.0 { nx } else { nx + 1 };
         if phase_end == 1.0 {
             // full-cell moves end on the lattice nodes: their pressure parts are cached
@@ -269,13 +281,13 @@ impl Contact {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
-                self.move_bristle_with::<false>(j, xi, &sp.nodes[slot + 1], &kin, &fac, s, ac);
+                self.move_bristle_with::<false>(j, xi, &sp.nodes[slot + 1], kin, &fac, s, ac);
             }
         } else {
             for slot in skip..inside.min(end) {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
-                self.move_bristle::<false>(j, xi, &kin, &fac, &mut sp.st[id], &mut sp.acc[id]);
+                self.move_bristle::<false>(j, xi, kin, &fac, &mut sp.st[id], &mut sp.acc[id]);
             }
         }
     }
@@ -457,6 +469,9 @@ impl Contact {
         let nodes = &*sp.nodes;
         for k in 0..count {
             let id = sp.slot(k);
+            // the state at its last node (whole-cell commit)
+            sp.node_st[id] = s;
+            sp.node_acc[id] = acc;
             // slot nx is past the trailing edge once the phase is > 0: not moved (as in the loop)
             if d_end > 0.0 && k < self.nx {
                 let (mut ps, mut pacc) = (s, acc);
@@ -578,6 +593,7 @@ impl Contact {
         };
         sp.acc[id] = [0.0; N_KERNEL];
         *sp.phase = 0.0;
+        *sp.part = super::Partial::default();
     }
 }
 
@@ -594,6 +610,14 @@ impl Contact {
         let ph = if ph < 1e-9 { 0.0 } else { ph };
         *sp.head = 0;
         *sp.phase = ph;
+        *sp.part = super::Partial::default();
+        let i = &self.inputs;
+        let h = if i.v > V_STANDSTILL {
+            ph * dx / i.v
+        } else {
+            0.0
+        };
+        super::strip::add_part(sp.part, ph * dx, h, i.cx, i.cy, i.spin);
         self.march_new(sp, self.nx + 1, ph * dx);
     }
 

@@ -97,6 +97,13 @@ pub(crate) struct RawState<'a> {
     /// frictional heat density history q (W/m^2, both bodies) weighted by exp(-s_k age)
     /// (module [`crate::thermal`]); `[0]` is all heat ever received.
     pub acc: &'a [[f64; N_KERNEL]],
+    /// The bristles' states and accumulators at their last lattice node (same index and
+    /// units as `st`, `acc`): the committed state of the whole-cell commit, from which the
+    /// next step moves each bristle over its whole current cell.
+    pub node_st: &'a [BristleState],
+    pub node_acc: &'a [[f64; N_KERNEL]],
+    /// Per strip, the part of the current cell travelled since that node ([`Partial`]).
+    pub part: &'a [Partial],
     /// True once a step or steady state has set the grid (false: the next step starts
     /// from the steady state of its inputs).
     pub initialized: bool,
@@ -122,6 +129,10 @@ pub(crate) struct OwnedRawState {
     pub st: Vec<BristleState>,
     /// Heat-kernel accumulators per bristle, J/m^2.
     pub acc: Vec<[f64; N_KERNEL]>,
+    /// The node states, node accumulators and per-strip parts of [`RawState`]; None for a
+    /// state saved before the whole-cell commit (format version 3 and older): its bristles
+    /// then count as at their node, and their next move ends the current cell.
+    pub nodes: Option<NodeStates>,
     /// True once a step or steady state has set the grid.
     pub initialized: bool,
     /// Last outputs, forward frame.
@@ -129,6 +140,21 @@ pub(crate) struct OwnedRawState {
     /// Rolling backwards, -.
     pub reversed: bool,
 }
+
+/// The part of the current cell a strip has travelled since its bristles' last lattice node:
+/// distance d (m), time h (s) and the distance-weighted creepages (m).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Partial {
+    pub d: f64,
+    pub h: f64,
+    pub dcx: f64,
+    pub dcy: f64,
+    pub dcs: f64,
+}
+
+/// The committed node states, node accumulators and per-strip parts of a contact's grid
+/// ([`RawState`]).
+pub(crate) type NodeStates = (Vec<BristleState>, Vec<[f64; N_KERNEL]>, Vec<Partial>);
 
 /// The persistent contact: geometry, bristle grid and its state.
 #[derive(Clone, Debug)]
@@ -148,6 +174,12 @@ pub struct Contact {
     /// Bristle state (index j * (nx + 1) + slot).
     st: Vec<BristleState>,
     acc: Vec<[f64; N_KERNEL]>,
+    /// Whole-cell commit: each bristle's state and accumulators at its last lattice node
+    /// (`st`, `acc` hold it at the strip's phase, for the outputs), and per strip the part
+    /// of the current cell travelled since (see [`Partial`]).
+    node_st: Vec<BristleState>,
+    node_acc: Vec<[f64; N_KERNEL]>,
+    part: Vec<Partial>,
     /// Time since start, s.
     time: f64,
     inputs: Inputs,
@@ -233,6 +265,9 @@ impl Contact {
             phase: vec![0.0; ny],
             st: vec![BristleState::default(); n],
             acc: vec![[0.0; N_KERNEL]; n],
+            node_st: vec![BristleState::default(); n],
+            node_acc: vec![[0.0; N_KERNEL]; n],
+            part: vec![Partial::default(); ny],
             time: 0.0,
             inputs: Inputs::default(),
             patch,
@@ -338,6 +373,7 @@ impl Contact {
                 self.phase[j] = 1.0 - p;
             }
         }
+        self.reset_nodes();
     }
 
     /// Warnings raised since the last call (e.g. Péclet condition not met), drained.
@@ -461,6 +497,7 @@ impl Contact {
         for a in self.acc.iter_mut() {
             *a = [0.0; N_KERNEL];
         }
+        self.reset_nodes();
         self.out = Outputs {
             t_max: self.inputs.t_bulk,
             t_mean: self.inputs.t_bulk,
@@ -503,6 +540,7 @@ impl Contact {
         self.each_strip(|c, sp| {
             *sp.head = 0;
             *sp.phase = 0.0;
+            *sp.part = Partial::default();
             c.march_new(sp, c.nx + 1, 0.0)
         });
         self.integrate()
@@ -517,6 +555,9 @@ impl Contact {
             phase: &self.phase,
             st: &self.st,
             acc: &self.acc,
+            node_st: &self.node_st,
+            node_acc: &self.node_acc,
+            part: &self.part,
             initialized: self.initialized,
             out: self.out,
             reversed: self.reversed,
@@ -533,6 +574,7 @@ impl Contact {
             phase,
             st,
             acc,
+            nodes,
             initialized,
             out,
             reversed,
@@ -560,6 +602,17 @@ impl Contact {
                 "negative speed in a state (its inputs are held in the forward frame)".into(),
             ));
         }
+        if let Some((ns, na, part)) = &nodes {
+            if ns.len() != st.len() || na.len() != acc.len() || part.len() != self.ny {
+                return Err(CreepError::State(format!(
+                    "grid mismatch: state has {} node bristles / {} strip parts, contact has {} / {}",
+                    ns.len(),
+                    part.len(),
+                    self.st.len(),
+                    self.ny
+                )));
+            }
+        }
         self.time = time;
         self.reversed = reversed;
         self.set_inputs(&inputs)?;
@@ -567,9 +620,26 @@ impl Contact {
         self.phase = phase;
         self.st = st;
         self.acc = acc;
+        match nodes {
+            Some((ns, na, part)) => {
+                self.node_st = ns;
+                self.node_acc = na;
+                self.part = part;
+            }
+            None => self.reset_nodes(),
+        }
         self.initialized = initialized;
         self.out = out;
         Ok(())
+    }
+
+    /// Takes the bristles where they are as their committed node states, with nothing of
+    /// the current cell travelled since: their next move ends the current cell (after a
+    /// change of direction, a lift-off and for states saved before the whole-cell commit).
+    fn reset_nodes(&mut self) {
+        self.node_st.copy_from_slice(&self.st);
+        self.node_acc.copy_from_slice(&self.acc);
+        self.part.iter_mut().for_each(|p| *p = Partial::default());
     }
 
     /// Switches the march of newly entered bristles off (plain sub-step loop for every

@@ -14,6 +14,11 @@ pub(super) struct Strip<'a> {
     pub st: &'a mut [BristleState],
     /// Their heat-kernel accumulators.
     pub acc: &'a mut [[f64; N_KERNEL]],
+    /// Their states and accumulators at their last lattice node (whole-cell commit).
+    pub node_st: &'a mut [BristleState],
+    pub node_acc: &'a mut [[f64; N_KERNEL]],
+    /// The part of the current cell travelled since that node.
+    pub part: &'a mut super::Partial,
     /// Ring-buffer head.
     pub head: &'a mut usize,
     /// Phase in [0, 1) (Eq. 4.17).
@@ -43,6 +48,9 @@ impl Contact {
         let nx1 = self.nx + 1;
         let mut st = std::mem::take(&mut self.st);
         let mut acc = std::mem::take(&mut self.acc);
+        let mut node_st = std::mem::take(&mut self.node_st);
+        let mut node_acc = std::mem::take(&mut self.node_acc);
+        let mut part = std::mem::take(&mut self.part);
         let mut head = std::mem::take(&mut self.head);
         let mut phase = std::mem::take(&mut self.phase);
         let mut nodes = std::mem::take(&mut self.np_cache);
@@ -56,12 +64,26 @@ impl Contact {
                 .zip(head.iter_mut().zip(phase.iter_mut()))
                 .zip(nodes.iter_mut().zip(nodes_p0.iter_mut()))
                 .zip(fac.iter_mut())
+                .zip(node_st.chunks_mut(nx1).zip(node_acc.chunks_mut(nx1)))
+                .zip(part.iter_mut())
                 .enumerate()
                 .map(
-                    |(j, ((((st, acc), (head, phase)), (nodes, nodes_p0)), fac))| Strip {
+                    |(
+                        j,
+                        (
+                            (
+                                ((((st, acc), (head, phase)), (nodes, nodes_p0)), fac),
+                                (node_st, node_acc),
+                            ),
+                            part,
+                        ),
+                    )| Strip {
                         j,
                         st,
                         acc,
+                        node_st,
+                        node_acc,
+                        part,
                         head,
                         phase,
                         nodes,
@@ -82,6 +104,9 @@ impl Contact {
         }
         self.st = st;
         self.acc = acc;
+        self.node_st = node_st;
+        self.node_acc = node_acc;
+        self.part = part;
         self.head = head;
         self.phase = phase;
         self.np_cache = nodes;
@@ -146,21 +171,30 @@ impl Contact {
             }
             w
         };
+        let (cx, cy, cs) = (self.inputs.cx, self.inputs.cy, self.inputs.spin);
         while remaining > tol {
             let to_next = (1.0 - *sp.phase) * dx;
             if remaining >= to_next - tol {
-                // end positions are one node further (phase 1), then the slots shift
-                if !march {
-                    self.substep_strip(sp, to_next / v, to_next, 1.0, 0, self.nx + 1);
-                } else if n_new + (wraps - n_new) <= self.nx {
-                    self.substep_strip(
-                        sp,
-                        to_next / v,
-                        to_next,
-                        1.0,
-                        n_new,
-                        self.nx + 1 - (wraps - n_new),
-                    );
+                // end positions are one node further (phase 1), then the slots shift. A cell
+                // begun in an earlier step is moved whole from the bristles' node states with
+                // the distance-weighted inputs of its parts (whole-cell commit: no cell is cut)
+                let (skip, end) = if !march {
+                    (0, self.nx + 1)
+                } else {
+                    (n_new, self.nx + 1 - (wraps - n_new))
+                };
+                if !march || n_new + (wraps - n_new) <= self.nx {
+                    let kin = if *sp.phase > 0.0 {
+                        for slot in skip..self.nx.min(end) {
+                            let id = sp.slot(slot);
+                            sp.st[id] = sp.node_st[id];
+                            sp.acc[id] = sp.node_acc[id];
+                        }
+                        self.part_kin(sp.part, to_next, cx, cy, cs)
+                    } else {
+                        self.kin(to_next / v, to_next)
+                    };
+                    self.substep_strip_kin(sp, &kin, 1.0, skip, end);
                 }
                 // all bristles moved one node: the slot numbering shifts by recycling the oldest
                 self.enter_bristle(sp);
@@ -168,11 +202,24 @@ impl Contact {
                 remaining -= to_next;
             } else {
                 let ph = *sp.phase + remaining / dx;
-                if !march {
-                    self.substep_strip(sp, remaining / v, remaining, ph, 0, self.nx + 1);
-                } else if n_new <= self.nx {
-                    self.substep_strip(sp, remaining / v, remaining, ph, n_new, self.nx + 1);
+                let skip = if !march { 0 } else { n_new };
+                if !march || n_new <= self.nx {
+                    // the bristles at the step's phase, from their node states over the whole
+                    // part of the cell travelled since (for the outputs; not committed)
+                    for slot in skip..self.nx {
+                        let id = sp.slot(slot);
+                        if *sp.phase == 0.0 {
+                            sp.node_st[id] = sp.st[id];
+                            sp.node_acc[id] = sp.acc[id];
+                        } else {
+                            sp.st[id] = sp.node_st[id];
+                            sp.acc[id] = sp.node_acc[id];
+                        }
+                    }
+                    let kin = self.part_kin(sp.part, remaining, cx, cy, cs);
+                    self.substep_strip_kin(sp, &kin, ph, skip, self.nx + 1);
                 }
+                add_part(sp.part, remaining, remaining / v, cx, cy, cs);
                 *sp.phase = ph;
                 d_end = remaining;
                 remaining = 0.0;
@@ -181,5 +228,44 @@ impl Contact {
         if n_new > 0 && march {
             self.march_new(sp, n_new.min(self.nx + 1), d_end);
         }
+    }
+}
+
+/// Adds a part of distance `d` (m) and time `h` (s) at creepages `cx`, `cy`, `cs` to `p`.
+pub(super) fn add_part(p: &mut super::Partial, d: f64, h: f64, cx: f64, cy: f64, cs: f64) {
+    p.d += d;
+    p.h += h;
+    p.dcx += d * cx;
+    p.dcy += d * cy;
+    p.dcs += d * cs;
+}
+
+impl Contact {
+    /// Kinematics of a move over the strip's part `p` of the current cell plus `d` (m) more
+    /// at the current inputs: the creepages weighted by distance (the rigid slip and the
+    /// elastic increment of Eq. 4.21 are linear in them), the time summed.
+    pub(super) fn part_kin(
+        &self,
+        p: &super::Partial,
+        d: f64,
+        cx: f64,
+        cy: f64,
+        cs: f64,
+    ) -> super::advance::Kin {
+        let v = self.inputs.v;
+        let h = if v > super::V_STANDSTILL { d / v } else { 0.0 };
+        if p.d == 0.0 {
+            // nothing of the cell travelled before: the current inputs as they are
+            return self.kin(h, d);
+        }
+        let mut q = *p;
+        add_part(&mut q, d, h, cx, cy, cs);
+        let mut k = self.kin(q.h, q.d);
+        if q.d > 0.0 {
+            k.cx = q.dcx / q.d;
+            k.cy = q.dcy / q.d;
+            k.cs = q.dcs / q.d;
+        }
+        k
     }
 }

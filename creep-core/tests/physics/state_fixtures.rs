@@ -1,4 +1,4 @@
-//! Model states serialized by an earlier build (format version 2, written on branch issue-27 from main at e5dece1, before the state stored its values by name) still load, continue as a fresh run of this build does (within the temperature solve's tolerance change since), and continue bit for bit once saved again in the current format.
+//! Model states serialized by an earlier build (format version 2, written on branch issue-27 from main at e5dece1, before the state stored its values by name) still load, continue as a fresh run of this build does (within the discretisation changes since), and continue bit for bit once saved again in the current format.
 use crate::common::*;
 use creep_core::{Config, Grid, Inputs, Model};
 
@@ -30,16 +30,46 @@ fn run(name: &str) -> Model {
     m
 }
 
-/// `a` and `b` agree within 1e-5 of the larger magnitude (plus 1e-9 for values that vanish
-/// by symmetry): the fixtures were written before the temperature solve's tolerance went from
-/// 1e-4 to 1e-10 (issue 25), which moved these outputs by up to 6e-7 relative; a legacy
-/// reader that put a value in the wrong place would be off by orders of magnitude more.
-fn close(what: &str, a: &creep_core::Outputs, b: &creep_core::Outputs) {
+/// `a` and `b` agree within `tol` of the larger magnitude (plus 1e-9 for values that vanish
+/// by symmetry).
+fn close(what: &str, a: &creep_core::Outputs, b: &creep_core::Outputs, tol: f64) {
     for (k, (x, y)) in a.to_array().iter().zip(b.to_array()).enumerate() {
         assert!(
-            (x - y).abs() <= 1e-5 * x.abs().max(y.abs()) + 1e-9,
+            (x - y).abs() <= tol * x.abs().max(y.abs()) + 1e-9,
             "{what}: output {k}: {x} vs {y}"
         );
+    }
+}
+
+/// The outputs the `table4.1` fixture holds, as its build wrote them (every value stored in
+/// the state; a reader that put one in the wrong place would not give these bits back).
+const TABLE41_OUTPUTS: [f64; 13] = [
+    36346.403129244034,
+    0.0,
+    6.217248937900877e-15,
+    0.3304218466294912,
+    76.6965791564726,
+    51.759281395144846,
+    5949.675988985537,
+    0.0,
+    1.0,
+    0.0,
+    0.00763,
+    0.00788,
+    873541045.238297,
+];
+
+/// How far a continuation of a fixture may be from a fresh run of this build. Polach has not
+/// changed since the fixtures were written: 1e-5 (its tolerance change moved nothing). The
+/// bristle model has: the temperature solve's tolerance (issue 25, up to 6e-7 here) and the
+/// whole-cell commit (issue 24: this 8 x 3 grid, whose 1.9 mm cells each step of 1 mm cuts,
+/// is 2.0 % off the old cut-cell value at the fixture's instant). Both are discretisation
+/// changes, not reader errors: the reader is checked bit for bit above and by re-saving.
+fn tolerance(name: &str) -> f64 {
+    if name == "polach" {
+        1e-5
+    } else {
+        3e-2
     }
 }
 
@@ -52,7 +82,19 @@ fn version_2_states_load_and_continue() {
         let mut old = Model::new(&config(name)).expect("model");
         old.load_state(bytes).expect("a version 2 state loads");
         assert_eq!(old.time().to_bits(), now.time().to_bits(), "{name}: time");
-        close(&format!("{name}: outputs"), &old.outputs(), &now.outputs());
+        if name == "table4.1" {
+            assert_eq!(
+                old.outputs().to_array().map(f64::to_bits),
+                TABLE41_OUTPUTS.map(f64::to_bits),
+                "{name}: the outputs the fixture holds"
+            );
+        }
+        close(
+            &format!("{name}: outputs"),
+            &old.outputs(),
+            &now.outputs(),
+            tolerance(name),
+        );
         // what loaded is saved again in the current format, reads back and continues bit
         // for bit
         let again = old.save_state();
@@ -63,7 +105,7 @@ fn version_2_states_load_and_continue() {
             let a = now.step(2e-4, &input(k)).expect("step");
             let b = old.step(2e-4, &input(k)).expect("step");
             let c = third.step(2e-4, &input(k)).expect("step");
-            close(&format!("{name}: step {k}"), &a, &b);
+            close(&format!("{name}: step {k}"), &a, &b, tolerance(name));
             assert_eq!(b, c, "{name}: step {k} after re-saving");
         }
     }
