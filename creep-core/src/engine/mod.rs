@@ -101,6 +101,7 @@ pub(crate) struct RawState<'a> {
     /// units as `st`, `acc`): the committed state of the whole-cell commit, from which the
     /// next step moves each bristle over its whole current cell.
     pub node_st: &'a [BristleState],
+    /// Their heat-kernel accumulators at that node, J/m^2.
     pub node_acc: &'a [[f64; N_KERNEL]],
     /// Per strip, the part of the current cell travelled since that node ([`Partial`]).
     pub part: &'a [Partial],
@@ -141,14 +142,19 @@ pub(crate) struct OwnedRawState {
     pub reversed: bool,
 }
 
-/// The part of the current cell a strip has travelled since its bristles' last lattice node:
-/// distance d (m), time h (s) and the distance-weighted creepages (m).
+/// The part of the current cell a strip has travelled since its bristles' last lattice node
+/// (the whole-cell commit, docs/model.md section 3): sums over the steps' pieces of it.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Partial {
+    /// Distance travelled, m.
     pub d: f64,
+    /// Time taken, s.
     pub h: f64,
+    /// Sum of distance x longitudinal creepage, m.
     pub dcx: f64,
+    /// Sum of distance x lateral creepage, m.
     pub dcy: f64,
+    /// Sum of distance x spin creepage (1/m), dimensionless.
     pub dcs: f64,
 }
 
@@ -178,7 +184,9 @@ pub struct Contact {
     /// (`st`, `acc` hold it at the strip's phase, for the outputs), and per strip the part
     /// of the current cell travelled since (see [`Partial`]).
     node_st: Vec<BristleState>,
+    /// Heat-kernel accumulators at the last lattice node (same index as `node_st`), J/m^2.
     node_acc: Vec<[f64; N_KERNEL]>,
+    /// Per strip, the part of the current cell travelled since that node.
     part: Vec<Partial>,
     /// Time since start, s.
     time: f64,

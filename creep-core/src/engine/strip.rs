@@ -14,8 +14,9 @@ pub(super) struct Strip<'a> {
     pub st: &'a mut [BristleState],
     /// Their heat-kernel accumulators.
     pub acc: &'a mut [[f64; N_KERNEL]],
-    /// Their states and accumulators at their last lattice node (whole-cell commit).
+    /// Their states at their last lattice node (whole-cell commit).
     pub node_st: &'a mut [BristleState],
+    /// Their heat-kernel accumulators at that node.
     pub node_acc: &'a mut [[f64; N_KERNEL]],
     /// The part of the current cell travelled since that node.
     pub part: &'a mut super::Partial,
