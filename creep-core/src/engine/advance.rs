@@ -32,6 +32,31 @@ pub(super) struct Kin {
     pub(super) w_old: f64,
 }
 
+impl Kin {
+    /// The rigid slip of a move whose midpoint is at (x, y) in the contact frame, m
+    /// (Eq. 4.16: du = v h (c_x - c_s y, c_y + c_s x), with v h the distance moved).
+    #[inline]
+    pub(super) fn rigid_slip(&self, [x, y]: [f64; 2]) -> [f64; 2] {
+        let d = self.dist;
+        [d * (self.cx - self.cs * y), d * (self.cy + self.cs * x)]
+    }
+
+    /// The flexibilities L_x + L_e, L_y + L_e (m/Pa) for the layer's flexibility `le` and the
+    /// elastic stress increment of the move at (x, y), Pa (Eq. 4.21).
+    #[inline]
+    pub(super) fn flex(&self, le: f64, [x, y]: [f64; 2]) -> (f64, f64, [f64; 2]) {
+        let d = self.dist;
+        let lxe = self.lx + le;
+        let lye = self.ly + le;
+        let lse = self.ls + le;
+        let dtau = [
+            d * (self.cx / lxe - self.cs * y / lse),
+            d * (self.cy / lye + self.cs * x / lse),
+        ];
+        (lxe, lye, dtau)
+    }
+}
+
 /// The stress that multiplies a long continuous sub-step's plastic slip in its
 /// dissipation (Eq. 4.29): `new - w (new - old)`, w = [`Kin::w_old`] > 0. (Moves of at most
 /// one cell take `new` itself: they run the instance without the weight.)
@@ -93,8 +118,7 @@ impl Contact {
         acc: &mut [f64; N_KERNEL],
         fac: &StepFactors,
     ) -> f64 {
-        let d = k.dist;
-        let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
+        let du = k.rigid_slip([x, y]);
         // Temperature from the heat history (all but the newest interval), Eq. 4.35.
         // acc[0] integrates all heat ever received (rate 0): zero means a cold history
         let warm = acc[0] != 0.0;
@@ -142,16 +166,7 @@ impl Contact {
             1.0
         };
         // flexibilities L + L_e and the elastic increment (Eq. 4.21) for the layer's L_e
-        let flex = |le: f64| {
-            let lxe = k.lx + le;
-            let lye = k.ly + le;
-            let lse = k.ls + le;
-            let dtau = [
-                d * (k.cx / lxe - k.cs * y / lse),
-                d * (k.cy / lye + k.cs * x / lse),
-            ];
-            (lxe, lye, dtau)
-        };
+        let flex = |le: f64| k.flex(le, [x, y]);
         // Without a temperature coefficient of L_e (every preset) and without formula
         // effects, material_base gives L_e = the node's (divided by exactly 1): the same for
         // every trial temperature, so this is computed once per move, not per evaluation.
@@ -395,16 +410,9 @@ impl Contact {
         [x, y]: [f64; 2],
         s: &mut BristleState,
     ) {
-        let d = k.dist;
-        let du = [d * (k.cx - k.cs * y), d * (k.cy + k.cs * x)];
+        let du = k.rigid_slip([x, y]);
         let m = self.r.material_base(np, k.t_bulk);
-        let lxe = k.lx + m.le;
-        let lye = k.ly + m.le;
-        let lse = k.ls + m.le;
-        let dtau = [
-            d * (k.cx / lxe - k.cs * y / lse),
-            d * (k.cy / lye + k.cs * x / lse),
-        ];
+        let (lxe, lye, dtau) = k.flex(m.le, [x, y]);
         let old = s.tau;
         bristle::update(s, du, dtau, &m, [lxe, lye], self.r.rule);
         s.q = if k.heat {

@@ -39,7 +39,6 @@ impl Contact {
         acc: &mut [f64; N_KERNEL],
         fac: &StepFactors,
     ) -> Option<f64> {
-        let d = k.dist;
         let warm = acc[0] != 0.0;
         let self_c = k.self_c;
         if self_c.is_nan() || self_c <= 0.0 {
@@ -54,13 +53,7 @@ impl Contact {
         // the material at t_hist (with the operating point's formula and custom factors)
         let m_h = self.material_static(np, t_hist);
         // flexibilities L + L_e and the elastic increment (Eq. 4.21); L_e does not depend on T
-        let lxe = k.lx + m_h.le;
-        let lye = k.ly + m_h.le;
-        let lse = k.ls + m_h.le;
-        let dtau = [
-            d * (k.cx / lxe - k.cs * y / lse),
-            d * (k.cy / lye + k.cs * x / lse),
-        ];
+        let (lxe, lye, dtau) = k.flex(m_h.le, [x, y]);
         let path = mv.softening_path(&old, dtau, &m_h)?;
         // a weighted start stress (long continuous sub-steps) in its own instance, so that
         // the common moves run the unweighted code
