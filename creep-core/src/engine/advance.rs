@@ -451,13 +451,12 @@ impl Contact {
     /// the strip's phase. Same updates, positions and sub-step lengths as the sub-step loop.
     pub(super) fn march_new(&self, sp: &mut Strip, count: usize, d_end: f64) {
         let j = sp.j;
-        let v = self.inputs.v;
         let dx = 2.0 * self.ell[j] * self.patch.a / self.nx as f64;
         let dxi = 2.0 * self.ell[j] / self.nx as f64;
         let phase_end = *sp.phase;
         // With v = 0 (the steady march at standstill) the march is over distance only and
         // carries no heat: the v -> 0 limit.
-        let time = |d: f64| if v > V_STANDSTILL { d / v } else { 0.0 };
+        let time = |d: f64| self.time_of(d);
         let kin_full = self.kin(time(dx), dx);
         let fac_full = self.factors(sp.fac, time(dx), kin_full.heat);
         let kin_part = self.kin(time(d_end), d_end);
@@ -619,13 +618,7 @@ impl Contact {
         *sp.head = 0;
         *sp.phase = ph;
         *sp.part = super::Partial::default();
-        let i = &self.inputs;
-        let h = if i.v > V_STANDSTILL {
-            ph * dx / i.v
-        } else {
-            0.0
-        };
-        super::strip::add_part(sp.part, ph * dx, h, i.cx, i.cy, i.spin);
+        self.add_part(sp.part, ph * dx);
         self.march_new(sp, self.nx + 1, ph * dx);
     }
 

@@ -172,7 +172,6 @@ impl Contact {
             }
             w
         };
-        let (cx, cy, cs) = (self.inputs.cx, self.inputs.cy, self.inputs.spin);
         while remaining > tol {
             let to_next = (1.0 - *sp.phase) * dx;
             if remaining >= to_next - tol {
@@ -186,12 +185,8 @@ impl Contact {
                 };
                 if !march || n_new + (wraps - n_new) <= self.nx {
                     let kin = if *sp.phase > 0.0 {
-                        for slot in skip..self.nx.min(end) {
-                            let id = sp.slot(slot);
-                            sp.st[id] = sp.node_st[id];
-                            sp.acc[id] = sp.node_acc[id];
-                        }
-                        self.part_kin(sp.part, to_next, cx, cy, cs)
+                        sp.back_to_nodes(skip..self.nx.min(end));
+                        self.part_kin(sp.part, to_next)
                     } else {
                         self.kin(to_next / v, to_next)
                     };
@@ -207,20 +202,15 @@ impl Contact {
                 if !march || n_new <= self.nx {
                     // the bristles at the step's phase, from their node states over the whole
                     // part of the cell travelled since (for the outputs; not committed)
-                    for slot in skip..self.nx {
-                        let id = sp.slot(slot);
-                        if *sp.phase == 0.0 {
-                            sp.node_st[id] = sp.st[id];
-                            sp.node_acc[id] = sp.acc[id];
-                        } else {
-                            sp.st[id] = sp.node_st[id];
-                            sp.acc[id] = sp.node_acc[id];
-                        }
+                    if *sp.phase == 0.0 {
+                        sp.keep_at_nodes(skip..self.nx);
+                    } else {
+                        sp.back_to_nodes(skip..self.nx);
                     }
-                    let kin = self.part_kin(sp.part, remaining, cx, cy, cs);
+                    let kin = self.part_kin(sp.part, remaining);
                     self.substep_strip_kin(sp, &kin, ph, skip, self.nx + 1);
                 }
-                add_part(sp.part, remaining, remaining / v, cx, cy, cs);
+                self.add_part(sp.part, remaining);
                 *sp.phase = ph;
                 d_end = remaining;
                 remaining = 0.0;
@@ -232,35 +222,58 @@ impl Contact {
     }
 }
 
-/// Adds a part of distance `d` (m) and time `h` (s) at creepages `cx`, `cy`, `cs` to `p`.
-pub(super) fn add_part(p: &mut super::Partial, d: f64, h: f64, cx: f64, cy: f64, cs: f64) {
-    p.d += d;
-    p.h += h;
-    p.dcx += d * cx;
-    p.dcy += d * cy;
-    p.dcs += d * cs;
+impl Strip<'_> {
+    /// The bristles of `slots` are at their lattice nodes: their states become the node states.
+    fn keep_at_nodes(&mut self, slots: std::ops::Range<usize>) {
+        for slot in slots {
+            let id = self.slot(slot);
+            self.node_st[id] = self.st[id];
+            self.node_acc[id] = self.acc[id];
+        }
+    }
+
+    /// The bristles of `slots` go back to their node states (the provisional part of the
+    /// current cell is dropped, to be moved again from the node).
+    fn back_to_nodes(&mut self, slots: std::ops::Range<usize>) {
+        for slot in slots {
+            let id = self.slot(slot);
+            self.st[id] = self.node_st[id];
+            self.acc[id] = self.node_acc[id];
+        }
+    }
 }
 
 impl Contact {
+    /// Time to roll `d` (m) at the current speed, s (0 at standstill, the v -> 0 limit).
+    pub(super) fn time_of(&self, d: f64) -> f64 {
+        let v = self.inputs.v;
+        if v > super::V_STANDSTILL {
+            d / v
+        } else {
+            0.0
+        }
+    }
+
+    /// Adds `d` (m) rolled at the current inputs to the strip's part `p` of its current cell.
+    pub(super) fn add_part(&self, p: &mut super::Partial, d: f64) {
+        let i = &self.inputs;
+        p.d += d;
+        p.h += self.time_of(d);
+        p.dcx += d * i.cx;
+        p.dcy += d * i.cy;
+        p.dcs += d * i.spin;
+    }
+
     /// Kinematics of a move over the strip's part `p` of the current cell plus `d` (m) more
     /// at the current inputs: the creepages weighted by distance (the rigid slip and the
     /// elastic increment of Eq. 4.21 are linear in them), the time summed.
-    pub(super) fn part_kin(
-        &self,
-        p: &super::Partial,
-        d: f64,
-        cx: f64,
-        cy: f64,
-        cs: f64,
-    ) -> super::advance::Kin {
-        let v = self.inputs.v;
-        let h = if v > super::V_STANDSTILL { d / v } else { 0.0 };
+    pub(super) fn part_kin(&self, p: &super::Partial, d: f64) -> super::advance::Kin {
         if p.d == 0.0 {
             // nothing of the cell travelled before: the current inputs as they are
-            return self.kin(h, d);
+            return self.kin(self.time_of(d), d);
         }
         let mut q = *p;
-        add_part(&mut q, d, h, cx, cy, cs);
+        self.add_part(&mut q, d);
         let mut k = self.kin(q.h, q.d);
         if q.d > 0.0 {
             k.cx = q.dcx / q.d;
