@@ -596,8 +596,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn parameters_and_effects_are_stored_by_name() {
+    /// An initialized instance with a parameter (tau_c1_0_GPa = 0.35) and an effect
+    /// (elastic unloading) set, so that its state holds both lists.
+    fn initialized_with_a_parameter_and_an_effect() -> Instance {
         let mut i = Instance::new("t", None, false);
         let vr = |n: &str| {
             crate::vars::table()
@@ -613,6 +614,12 @@ mod tests {
         );
         assert_eq!(i.enter_initialization(), Status::Ok);
         assert_eq!(i.exit_initialization(), Status::Ok);
+        i
+    }
+
+    #[test]
+    fn parameters_and_effects_are_stored_by_name() {
+        let mut i = initialized_with_a_parameter_and_an_effect();
         let snap = i.get_state();
         let bytes = serialize(&snap);
         let entry = |name: &str| {
@@ -652,21 +659,7 @@ mod tests {
     /// where the last one wins would load such a corrupted state silently).
     #[test]
     fn a_name_stored_twice_is_refused() {
-        let mut i = Instance::new("t", None, false);
-        let vr = |n: &str| {
-            crate::vars::table()
-                .iter()
-                .find(|v| v.name == n)
-                .unwrap()
-                .vr
-        };
-        assert_eq!(i.set_real(vr("tau_c1_0_GPa"), 0.35), Status::Ok);
-        assert_eq!(
-            i.set_boolean(vr("effect_elastic_unloading"), true),
-            Status::Ok
-        );
-        assert_eq!(i.enter_initialization(), Status::Ok);
-        assert_eq!(i.exit_initialization(), Status::Ok);
+        let mut i = initialized_with_a_parameter_and_an_effect();
         let bytes = serialize(&i.get_state());
         assert!(deserialize(&bytes).is_ok());
         let name = |n: &str| {
