@@ -147,6 +147,10 @@ pub struct Move {
     /// over the move (NaN before): with L_p independent of T (every preset) the trial
     /// temperatures of a solve share it.
     decay: Cell<(f64, f64)>,
+    /// tau_c1 at which a bristle that is elastic at the start of the move leaves the elastic
+    /// branch, Pa: that of the temperature it has while elastic (it makes no heat before it
+    /// crosses), set by [`Move::set_cold_yield`]; NaN: the move's material's own tau_c1.
+    cold_tc1: f64,
 }
 
 impl Move {
@@ -173,7 +177,21 @@ impl Move {
             t0,
             dir,
             decay: Cell::new((f64::NAN, f64::NAN)),
+            cold_tc1: f64::NAN,
         }
+    }
+
+    /// The bristle is elastic at the start of the move, below `tc1` (Pa), the yield stress of
+    /// the temperature it has while elastic: it leaves the elastic branch at `tc1`, not at
+    /// tau_c1 of the end-of-move temperature, which includes the heat of its own plastic
+    /// remainder. Returns the fraction of the elastic increment `dtau` spent before the
+    /// crossing (1: it stays elastic; 0: no cold crossing, the move's own tau_c1 applies).
+    pub fn set_cold_yield(&mut self, s: &BristleState, dtau: [f64; 2], tc1: f64) -> f64 {
+        if !(tc1.is_finite() && self.t0 <= tc1) {
+            return 0.0;
+        }
+        self.cold_tc1 = tc1;
+        crossing(s.tau, dtau, self.t0, tc1).unwrap_or(1.0)
     }
 
     /// exp(-(|u1| - |u0|) / lp), the Voce decay of a hardening bristle over the move,
@@ -273,10 +291,54 @@ pub fn update_move(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Material
     same_characteristic(s, mv, dtau, m, l)
 }
 
+/// The fraction of the elastic increment `dtau` at which the stress `tau` (of norm `t0`
+/// below `tc1`) reaches |tau| = `tc1` (the root of a quadratic in the fraction); None if
+/// the whole increment stays at or below `tc1`.
+#[inline]
+fn crossing(tau: [f64; 2], dtau: [f64; 2], t0: f64, tc1: f64) -> Option<f64> {
+    let tr = [tau[0] + dtau[0], tau[1] + dtau[1]];
+    if norm(tr) <= tc1 {
+        return None;
+    }
+    let dd = dtau[0] * dtau[0] + dtau[1] * dtau[1];
+    let td = tau[0] * dtau[0] + tau[1] * dtau[1];
+    let disc = (td * td - dd * (t0 * t0 - tc1 * tc1)).max(0.0);
+    Some(if dd > TINY {
+        ((-td + disc.sqrt()) / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    })
+}
+
 fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Material, l: [f64; 2]) {
     let (u0, du, t0, n1, dir) = (mv.u0, mv.du, mv.t0, mv.n1, mv.dir);
     let span = m.tc2 - m.tc1;
     let perfectly_plastic = span <= 1e-12 * m.tc2;
+    let tc1c = mv.cold_tc1;
+    if tc1c.is_finite() && !perfectly_plastic {
+        // elastic at the start of the move, below the yield stress of its cold state
+        // ([`Move::set_cold_yield`]): elastic up to tc1c, then Voce hardening on this
+        // material's characteristic from tc1c over the rest of the move
+        let Some(lam) = crossing(s.tau, dtau, t0, tc1c) else {
+            s.tau = [s.tau[0] + dtau[0], s.tau[1] + dtau[1]];
+            s.regime = Regime::Elastic;
+            return;
+        };
+        let uy = [u0[0] + lam * du[0], u0[1] + lam * du[1]];
+        let s1 = (n1 - norm(uy)).max(0.0);
+        if tc1c >= m.tc2 {
+            s.tau = [m.tc2 * dir[0], m.tc2 * dir[1]];
+            s.regime = Regime::Sliding;
+        } else {
+            let ntr = norm([s.tau[0] + dtau[0], s.tau[1] + dtau[1]]);
+            let t = (m.tc2 - (m.tc2 - tc1c) * (-s1 / m.lp).exp())
+                .max(m.tc1)
+                .min(ntr);
+            s.tau = [t * dir[0], t * dir[1]];
+            s.regime = Regime::Plastic;
+        }
+        return;
+    }
     if t0 >= m.tc2 {
         // broken layer / Coulomb sliding (Eq. 4.7)
         s.tau = [m.tc2 * dir[0], m.tc2 * dir[1]];

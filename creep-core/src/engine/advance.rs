@@ -173,10 +173,37 @@ impl Contact {
         let fixed = (!self.has_modifiers() && (self.r.le_t == 0.0 || !self.r.temperature))
             .then(|| flex(np.le));
         // the law's material-independent parts of this move, shared by all evaluations
-        let mv = (self.r.rule == bristle::Rule::SameCharacteristic)
+        let mut mv = (self.r.rule == bristle::Rule::SameCharacteristic)
             .then(|| bristle::Move::new(&old, du));
+        // A bristle elastic at the start of the move makes no heat until it crosses tau_c1:
+        // it crosses at the yield stress of its temperature while elastic, t_hist, and its
+        // heat flows only over the plastic remainder (1 - lambda) h of the move, so that its
+        // self-heating is 2 alpha C q sqrt(h) / sqrt(1 - lambda) for the move's mean heat
+        // density q (docs/model.md, section 9).
+        let mut m_hist = None;
+        let mut self_c = self_c;
+        if let Some(mv) = mv.as_mut() {
+            if self.r.temperature && k.heat && old.regime == bristle::Regime::Elastic {
+                let m = self.material(np, t_hist, u_abs, slip);
+                let dtau = match fixed {
+                    Some(f) => f.2,
+                    None => flex(m.le).2,
+                };
+                let tc1_of = |p: &NodeP| self.material(p, t_hist, u_abs, slip).tc1;
+                let tc1 = self.crossing_yield(k, np, [x, y], [old.tau, dtau], m.tc1, tc1_of);
+                let lam = mv.set_cold_yield(&old, dtau, tc1);
+                if lam > 0.0 && lam < 1.0 {
+                    self_c /= (1.0 - lam).sqrt();
+                }
+                m_hist = Some(m);
+            }
+        }
+        let mv = mv;
         let eval = |t: f64| -> (BristleState, f64) {
-            let m = self.material(np, t, u_abs, slip);
+            let m = match m_hist {
+                Some(m) if t == t_hist => m,
+                _ => self.material(np, t, u_abs, slip),
+            };
             let (lxe, lye, dtau) = match fixed {
                 Some(f) => f,
                 None => flex(m.le),
@@ -254,6 +281,88 @@ impl Contact {
             fac.accumulate(acc, q); // alpha is folded into alpha_c
         }
         q
+    }
+
+    /// The yield stress tau_c1 (Pa) at which a bristle that is elastic at the start of a move
+    /// (stress `tau` at its start, elastic increment `dtau`; `tc1_end` the yield stress at the move's end
+    /// node `np`, `tc1_of` that at any point, both at the temperature the bristle has while
+    /// elastic) leaves the elastic branch. Where the
+    /// pressure, and with it tau_c1, rises along the move (towards the middle of the
+    /// contact), the crossing is found at its own position: near the leading edge the
+    /// pressure grows like the square root of the distance from the edge, so the end node's
+    /// tau_c1 overstates the yield stress at the crossing by O(sqrt(dx)), an error of order
+    /// 1/2 that the hardening and the heat of the bristle carry downstream (docs/model.md,
+    /// section 9). Elsewhere, or when the trial stays elastic, the end node's tau_c1.
+    fn crossing_yield(
+        &self,
+        k: &Kin,
+        np: &NodeP,
+        [x, y]: [f64; 2],
+        [tau, dtau]: [[f64; 2]; 2],
+        tc1_end: f64,
+        tc1_of: impl Fn(&NodeP) -> f64,
+    ) -> f64 {
+        let norm = |l: f64| {
+            let t = [tau[0] + l * dtau[0], tau[1] + l * dtau[1]];
+            (t[0] * t[0] + t[1] * t[1]).sqrt()
+        };
+        let t0 = norm(0.0);
+        if !(t0 < tc1_end && norm(1.0) > tc1_end) {
+            return tc1_end;
+        }
+        let (a, b) = (self.patch.a, self.patch.b);
+        let eta = if self.patch.line { 0.0 } else { y / b };
+        // the move runs from xi(0) to xi(1) = the end node; x is its midpoint
+        let xi = |l: f64| (x + k.dist * (0.5 - l)) / a;
+        let np0 = self.r.node_p(&self.patch, xi(0.0), eta);
+        if np0.p >= np.p {
+            return tc1_end;
+        }
+        let tc1_at = |l: f64| tc1_of(&self.r.node_p(&self.patch, xi(l), eta));
+        // g(l) = |tau(l)| - tc1(l): g(1) > 0; g(0) <= 0 for a bristle below its yield stress.
+        // Solved in r = sqrt(l): near the leading edge tc1 rises like sqrt(l), which is
+        // singular in l but linear in r, so the regula falsi converges at its usual rate.
+        let g = |r: f64| norm(r * r) - tc1_at(r * r);
+        let (mut ra, mut ga) = (0.0, t0 - tc1_at(0.0));
+        let (mut rb, mut gb) = (1.0, norm(1.0) - tc1_end);
+        if ga > 0.0 {
+            // already at or above the yield stress of its start position: it yields at once,
+            // at its own stress (the limit of a crossing at lambda -> 0, so the outputs stay
+            // continuous in the inputs)
+            return t0;
+        }
+        // Illinois regula falsi to a crossing within 1e-13 in r, with bisection steps when
+        // it stalls: the outputs must be smooth in the inputs to rounding (issue 25)
+        // (a bristle entering at the leading edge starts with g(0) = 0, no stress and no
+        // strength, and is below its yield stress just after: bisect until g(ra) < 0)
+        let mut side = 0;
+        for it in 0..100 {
+            let r = if it % 8 == 7 || ga == 0.0 {
+                0.5 * (ra + rb)
+            } else {
+                (ra * gb - rb * ga) / (gb - ga)
+            };
+            let gr = g(r);
+            if gr > 0.0 {
+                (rb, gb) = (r, gr);
+                if side == 1 {
+                    ga *= 0.5;
+                }
+                side = 1;
+            } else {
+                (ra, ga) = (r, gr);
+                if side == -1 {
+                    gb *= 0.5;
+                }
+                side = -1;
+            }
+            if rb - ra < 1e-13 {
+                break;
+            }
+        }
+        // the yield stress the stress path meets at the crossing
+        let r = 0.5 * (ra + rb);
+        norm(r * r)
     }
 
     #[inline]

@@ -44,11 +44,39 @@ fn fx_is_smooth_in_cx() {
             "dF_x/dc_x by increments 1e-5, 1e-6, 1e-7: {d:?} N"
         );
     }
-    // a derivative, not noise: of the order of the creep curve's slopes (the falling branch
-    // here, -1.1e6 N per unit creepage; Kalker's initial slope is about 4e8 N)
+    // a derivative, not noise: not zero and below Kalker's initial slope (about 4e8 N per
+    // unit creepage). Its size here is a property of the grid, not of the smoothness: c_x =
+    // 0.5 % at 10 m/s is the flat top of the dry curve (steady slope 2e4-8e4 N on 320x84),
+    // where 80x21 gave -1.1e6 N before the cold crossing (issue 24, step 5) and -9.2e4 N
+    // with it; the agreement of the three increments above is the smoothness check.
     assert!(
-        d[1].abs() > 1e5 && d[1].abs() < 1e9,
+        d[1].abs() > 1e4 && d[1].abs() < 1e9,
         "dF_x/dc_x = {} N",
         d[1]
+    );
+}
+
+/// The ulp test of [`fx_is_smooth_in_cx`] over the creep curve: at 24 creepages from the
+/// adhesion-dominated start (0.1 %) past the peak to full sliding (20 %), where bristles
+/// cross from elastic to plastic at every place in the contact, one ulp of c_x never moves
+/// F_x by more than a rounding-sized amount (a branch of the bristle law chosen by a label
+/// rather than by the state would show here as a jump).
+#[test]
+fn fx_is_smooth_in_cx_along_the_curve() {
+    let steps = 5;
+    let mut worst = (0.0, 0.0);
+    for k in 0..24 {
+        let cx = -0.001 * 200f64.powf(k as f64 / 23.0);
+        let f0 = fx_after(cx, steps);
+        let jump = (fx_after(cx.next_up(), steps) - f0).abs();
+        if jump > worst.0 {
+            worst = (jump, cx);
+        }
+    }
+    assert!(
+        worst.0 < 1e-6,
+        "F_x moved by {:e} N for one ulp of c_x at c_x = {}",
+        worst.0,
+        worst.1
     );
 }

@@ -1,4 +1,4 @@
-//! Model states serialized by an earlier build (format version 2, written on branch issue-27 from main at e5dece1, before the state stored its values by name) still load, continue as a fresh run of this build does (within the discretisation changes since), and continue bit for bit once saved again in the current format.
+//! Model states serialized by an earlier build (format version 2, written on branch issue-27 from main at e5dece1, before the state stored its values by name) still load, agree bit for bit with a fresh run of this build once the bristles they hold have left the contact, and continue bit for bit once saved again in the current format.
 use crate::common::*;
 use creep_core::{Config, Grid, Inputs, Model};
 
@@ -59,12 +59,14 @@ const TABLE41_OUTPUTS: [f64; 13] = [
     873541045.238297,
 ];
 
-/// How far a continuation of a fixture may be from a fresh run of this build. Polach has not
-/// changed since the fixtures were written: 1e-5 (its tolerance change moved nothing). The
-/// bristle model has: the temperature solve's tolerance (issue 25, up to 6e-7 here) and the
-/// whole-cell commit (issue 24: this 8 x 3 grid, whose 1.9 mm cells each step of 1 mm cuts,
-/// is 2.0 % off the old cut-cell value at the fixture's instant). Both are discretisation
-/// changes, not reader errors: the reader is checked bit for bit above and by re-saving.
+/// How far a fixture's outputs (and Polach's continuation) may be from a fresh run of this
+/// build at the same instant. Polach has not changed since the fixtures were written: 1e-5
+/// (its tolerance change moved nothing). The bristle model has: the temperature solve's
+/// tolerance (issue 25, up to 6e-7 here), the whole-cell commit (issue 24: this 8 x 3 grid,
+/// whose 1.9 mm cells each step of 1 mm cuts, is 2.0 % off the old cut-cell value at the
+/// fixture's instant) and the cold crossing (issue 24, step 5). These are discretisation
+/// changes, not reader errors: the reader is checked bit for bit above, by re-saving, and by
+/// the bit-for-bit agreement one transit time after loading.
 fn tolerance(name: &str) -> f64 {
     if name == "polach" {
         1e-5
@@ -101,11 +103,24 @@ fn version_2_states_load_and_continue() {
         let mut third = Model::new(&config(name)).expect("model");
         third.load_state(&again).expect("the re-saved state loads");
         assert_eq!(third.outputs(), old.outputs(), "{name}: re-saved outputs");
-        for k in 7..10 {
+        // A fresh run of this build and the continuation of the old build's state see the
+        // same inputs; once every bristle that the old build placed has left the contact
+        // (one transit time 2a/v, plus the step that completes the last cell), nothing of
+        // the old state is left and the two agree bit for bit. Before that they differ by
+        // the discretisation changes since the fixture was written (up to 3.6 % in P_fric
+        // on this 8 x 3 grid at the first step); Polach has not changed and agrees from
+        // the first step.
+        let o = now.outputs();
+        let transit = (2.0 * o.a / (input(0).v * 2e-4)).ceil() as usize + 1;
+        for k in 7..7 + transit + 3 {
             let a = now.step(2e-4, &input(k)).expect("step");
             let b = old.step(2e-4, &input(k)).expect("step");
             let c = third.step(2e-4, &input(k)).expect("step");
-            close(&format!("{name}: step {k}"), &a, &b, tolerance(name));
+            if k - 7 + 1 >= transit {
+                assert_eq!(a, b, "{name}: step {k}, one transit time after loading");
+            } else if name == "polach" {
+                close(&format!("{name}: step {k}"), &a, &b, tolerance(name));
+            }
             assert_eq!(b, c, "{name}: step {k} after re-saving");
         }
     }
