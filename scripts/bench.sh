@@ -8,7 +8,8 @@
 #   bash scripts/bench.sh --only steady|transient|diagnose
 #   bash scripts/bench.sh --only threads   transient on all cores vs one (not pinned)
 #   bash scripts/bench.sh --only accuracy [--finest 640]   errors of each grid and scheme against
-#       the extrapolated limit of transient responses, beside their cost (about 10 minutes; 640: longer)
+#       the extrapolated limit of transient responses, beside their cost (about 15-25 minutes under
+#       load; 640: longer); also writes creep-core/data/accuracy.csv (ECF_ACCURACY_CSV=path: elsewhere)
 #   bash scripts/bench.sh --only consistency   drift of the steady state under transient steps at
 #       constant inputs, per preset, speed, grid and communication step (about 10 s)
 set -euo pipefail
