@@ -251,6 +251,8 @@ pub fn table(quick: bool, finest: usize) {
     let cases: Vec<Case> = if quick { vec![all[1], all[5]] } else { all };
     println!("== accuracy per cost: errors against the extrapolated limit, % of its largest value (F_x, T_max - T_bulk, P_fric); wall time / simulated time on one thread");
     let mut rows = Vec::new();
+    // the commit and the time the measurement starts on (later commits during the run do not count)
+    let measured = format!("commit {} at {} UTC", git_commit(), utc_now());
     for case in &cases {
         let sim = case.steps() as f64 * case.dt;
         let cells: Vec<Response> = grids
@@ -313,7 +315,7 @@ pub fn table(quick: bool, finest: usize) {
         .or_else(|| (!quick).then(|| CSV_PATH.to_string()));
     if let Some(dest) = dest {
         let path = std::path::Path::new(&dest);
-        match std::fs::write(path, csv_text(&rows, grids[grids.len() - 1])) {
+        match std::fs::write(path, csv_text(&rows, &measured, grids[grids.len() - 1])) {
             Ok(()) => println!("== accuracy table written to {}", path.display()),
             Err(e) => {
                 eprintln!("ecf-bench: cannot write {}: {e}", path.display());
@@ -362,13 +364,11 @@ fn csv_row(
 }
 
 /// The whole CSV file: comment lines (what, units, the commit and date measured on), the header and the rows.
-fn csv_text(rows: &[String], finest: (usize, usize)) -> String {
+fn csv_text(rows: &[String], measured: &str, finest: (usize, usize)) -> String {
     let mut s = String::new();
     s.push_str("# ECF accuracy per cost, written by `bash scripts/bench.sh --only accuracy` (ecf-bench/src/accuracy.rs); do not edit by hand\n");
     s.push_str(&format!(
-        "# measured on commit {} at {} UTC; finest grid {}x{}; F_N = 110 kN, a = 7.63 mm, b = 7.88 mm; one thread (pinned to one core by bench.sh), machine under load: costs +-30 %\n",
-        git_commit(),
-        utc_now(),
+        "# measured on {measured} (start of the run); finest grid {}x{}; F_N = 110 kN, a = 7.63 mm, b = 7.88 mm; one thread (pinned to one core by bench.sh), machine under load: costs +-30 %\n",
         finest.0,
         finest.1
     ));
