@@ -231,7 +231,7 @@ impl Choice {
     pub fn message(&self) -> String {
         let dts: Vec<String> = self.dt_tab_ms.iter().map(|d| format!("{d}")).collect();
         let head = format!(
-            "grid {}x{}, scheme {}: tabulated largest F_x error {:.2} % (worst of dry, table4.1, wet, steps and 50 Hz sine at {} m/s, {} ms steps; T_max rise {:.2} %; reference limit uncertain by up to {:.2} %), cost {:.3}x real time on one core",
+            "grid {}x{}, scheme {}: tabulated largest F_x error {:.2} % (worst of dry, table4.1, wet, steps and 50 Hz sine at {} m/s, {} ms steps; T_max rise {:.2} %; reference limit uncertain by up to {:.2} %), cost {:.2}x real time on one core",
             self.nx,
             self.ny,
             scheme_name(self.scheme),
