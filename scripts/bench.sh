@@ -8,7 +8,10 @@
 #   bash scripts/bench.sh --only steady|transient|diagnose
 #   bash scripts/bench.sh --only threads   transient on all cores vs one (not pinned)
 #   bash scripts/bench.sh --only accuracy [--finest 640]   errors of each grid and scheme against
-#       the extrapolated limit of transient responses, beside their cost (about 10 minutes; 640: longer)
+#       the extrapolated limit of transient responses, beside their cost (about 15-25 minutes under
+#       load; 640: longer); also writes creep-core/data/accuracy.csv (ECF_ACCURACY_CSV=path: elsewhere,
+#       and nothing else) and then runs scripts/accuracy-docs.sh (the Pareto PNGs in
+#       docs/img/accuracy/ and the tolerance table of docs/fmu.md)
 #   bash scripts/bench.sh --only consistency   drift of the steady state under transient steps at
 #       constant inputs, per preset, speed, grid and communication step (about 10 s)
 set -euo pipefail
@@ -16,6 +19,13 @@ cd "$(dirname "$0")/.."
 cargo build --release -q -p ecf-cli -p ecf-bench
 if [[ " $* " == *" threads "* ]]; then
   exec target/release/ecf-bench "$@"
+fi
+# the full accuracy table: then the PNGs and the docs/fmu.md table derived from it
+if [[ " $* " == *" accuracy "* && " $* " != *" --quick "* && -z "${ECF_ACCURACY_CSV:-}" ]]; then
+  pin=()
+  if command -v taskset >/dev/null 2>&1; then pin=(taskset -c 0); fi
+  "${pin[@]}" target/release/ecf-bench "$@"
+  exec bash scripts/accuracy-docs.sh
 fi
 if command -v taskset >/dev/null 2>&1; then
   exec taskset -c 0 target/release/ecf-bench "$@"

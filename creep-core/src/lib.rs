@@ -34,6 +34,7 @@ pub mod params;
 pub mod polach;
 pub mod state;
 pub mod thermal;
+pub mod tolerance;
 
 #[doc(hidden)]
 pub use inventory;

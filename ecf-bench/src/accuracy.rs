@@ -15,6 +15,16 @@
 //! extrapolation L(t) = X_n(t) + (X_n(t) - X_{n-1}(t)) / (2^p - 1) (p clamped to [0.5, 4]);
 //! its uncertainty is stated as max_t |L - X_n| (the size of the correction). Errors are in
 //! % of max_t |L| (for the temperature, of the largest rise).
+//!
+//! Schemes: `cells` is [`Scheme::CellsMarch`], the default of `ecf --scheme cells` and of the
+//! FMU (`scheme = 0`), so that the costs are those a user gets; the reference
+//! [`Scheme::Cells`] gives the same errors to 0.001 % at a higher cost (checked on the
+//! `--quick` cases). `continuous` is [`Scheme::Continuous`].
+//!
+//! The full run (not `--quick`) also writes the table as CSV to
+//! `creep-core/data/accuracy.csv` ([`CSV_PATH`]), which `creep_core::tolerance` reads at
+//! compile time: regenerate it with `bash scripts/bench.sh --only accuracy`, never by hand.
+//! `ECF_ACCURACY_CSV=path` writes it elsewhere instead (with `--quick` too).
 use creep_core::engine::Scheme;
 use creep_core::{Config, Contact, Grid, Inputs};
 use std::time::Instant;
@@ -61,6 +71,14 @@ impl Case {
                 self.v,
                 self.dt * 1e3
             ),
+        }
+    }
+
+    /// The case kind in the CSV: `step` or `sine`.
+    fn kind_name(&self) -> &'static str {
+        match self.kind {
+            Kind::Step { .. } => "step",
+            Kind::Sine { .. } => "sine",
         }
     }
 
@@ -237,11 +255,14 @@ pub fn table(quick: bool, finest: usize) {
     let all = cases();
     let cases: Vec<Case> = if quick { vec![all[1], all[5]] } else { all };
     println!("== accuracy per cost: errors against the extrapolated limit, % of its largest value (F_x, T_max - T_bulk, P_fric); wall time / simulated time on one thread");
+    let mut rows = Vec::new();
+    // the commit and the time the measurement starts on (later commits during the run do not count)
+    let measured = format!("commit {} at {} UTC", git_commit(), utc_now());
     for case in &cases {
         let sim = case.steps() as f64 * case.dt;
         let cells: Vec<Response> = grids
             .iter()
-            .map(|&(nx, ny)| run(case, nx, ny, Scheme::Cells))
+            .map(|&(nx, ny)| run(case, nx, ny, Scheme::CellsMarch))
             .collect();
         let refs: Vec<&Response> = cells.iter().collect();
         let l = limit(&refs);
@@ -265,10 +286,10 @@ pub fn table(quick: bool, finest: usize) {
             "x real t"
         );
         for (gi, &(nx, ny)) in grids.iter().enumerate() {
-            for scheme in [Scheme::Cells, Scheme::Continuous] {
+            for scheme in [Scheme::CellsMarch, Scheme::Continuous] {
                 let r;
                 let resp = match scheme {
-                    Scheme::Cells => &cells[gi],
+                    Scheme::CellsMarch => &cells[gi],
                     _ => {
                         r = run(case, nx, ny, scheme);
                         &r
@@ -276,10 +297,11 @@ pub fn table(quick: bool, finest: usize) {
                 };
                 let e: Vec<(f64, f64, f64)> = (0..3).map(|q| errors(resp, &l, q)).collect();
                 let f = |t: (f64, f64, f64)| format!("{:.2} / {:.2} / {:.2}", t.0, t.1, t.2);
+                rows.push(csv_row(case, nx, ny, scheme, &e, resp.wall / sim, &l));
                 println!(
                     "   {:>8} {:>10} {:>26} {:>26} {:>26} {:>10.2}",
                     format!("{nx}x{ny}"),
-                    if matches!(scheme, Scheme::Cells) {
+                    if matches!(scheme, Scheme::CellsMarch) {
                         "cells"
                     } else {
                         "continuous"
@@ -292,4 +314,133 @@ pub fn table(quick: bool, finest: usize) {
             }
         }
     }
+    // ECF_ACCURACY_CSV: another destination (also for --quick, which otherwise writes nothing)
+    let dest = std::env::var("ECF_ACCURACY_CSV")
+        .ok()
+        .or_else(|| (!quick).then(|| CSV_PATH.to_string()));
+    if let Some(dest) = dest {
+        let path = std::path::Path::new(&dest);
+        match std::fs::write(path, csv_text(&rows, &measured, grids[grids.len() - 1])) {
+            Ok(()) => println!("== accuracy table written to {}", path.display()),
+            Err(e) => {
+                eprintln!("ecf-bench: cannot write {}: {e}", path.display());
+                std::process::exit(1);
+            }
+        }
+    }
+}
+
+/// Where the full run writes the machine-readable table (read by `creep_core::tolerance`).
+pub const CSV_PATH: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../creep-core/data/accuracy.csv"
+);
+
+/// The CSV header (column names); the units are on the comment lines above it.
+pub const CSV_COLUMNS: &str = "preset,kind,v_m_s,dt_ms,nx,ny,scheme,fx_max_pct,fx_mean_pct,fx_end_pct,trise_max_pct,trise_mean_pct,trise_end_pct,pfric_max_pct,pfric_mean_pct,pfric_end_pct,wall_per_sim,fx_limit_unc_pct";
+
+/// One CSV line: the case, the grid and scheme, the nine errors (%), the cost, and the limit's F_x uncertainty (%).
+fn csv_row(
+    case: &Case,
+    nx: usize,
+    ny: usize,
+    scheme: Scheme,
+    e: &[(f64, f64, f64)],
+    cost: f64,
+    l: &Limit,
+) -> String {
+    let mut s = format!(
+        "{},{},{},{},{nx},{ny},{}",
+        case.preset,
+        case.kind_name(),
+        case.v,
+        case.dt * 1e3,
+        if matches!(scheme, Scheme::CellsMarch) {
+            "cells"
+        } else {
+            "continuous"
+        }
+    );
+    for t in e {
+        s.push_str(&format!(",{:.3},{:.3},{:.3}", t.0, t.1, t.2));
+    }
+    s.push_str(&format!(",{cost:.4},{:.3}", l.uncertainty[0]));
+    s
+}
+
+/// The whole CSV file: comment lines (what, units, the commit and date measured on), the header and the rows.
+fn csv_text(rows: &[String], measured: &str, finest: (usize, usize)) -> String {
+    let mut s = String::new();
+    s.push_str("# ECF accuracy per cost, written by `bash scripts/bench.sh --only accuracy` (ecf-bench/src/accuracy.rs); do not edit by hand\n");
+    s.push_str(&format!(
+        "# measured on {measured} (start of the run); finest grid {}x{}; F_N = 110 kN, a = 7.63 mm, b = 7.88 mm; one thread (pinned to one core by bench.sh), machine under load: costs +-30 %\n",
+        finest.0,
+        finest.1
+    ));
+    s.push_str("# units: v in m/s; dt (communication step) in ms; nx, ny in cells; *_pct: error against the Richardson limit in % of the limit's largest value over the response (F_x; T_max - T_bulk; P_fric), largest (max), mean over the communication points, and at the end; wall_per_sim: wall time / simulated time (-, 1 = real time); fx_limit_unc_pct: uncertainty of the limit itself, F_x, %\n");
+    s.push_str("# cases: step = c_x 1 -> 15 % (5 and 30 m/s) or 0.2 -> 5 % (20 m/s) at t = 0, six transits 2a/v; sine = c_x 2 % + 1.5 % sin(2 pi 50 Hz t), 1.25 periods\n");
+    s.push_str(CSV_COLUMNS);
+    s.push('\n');
+    for r in rows {
+        s.push_str(r);
+        s.push('\n');
+    }
+    s
+}
+
+/// The short commit hash of the working tree, with `+dirty` for uncommitted changes; `unknown` without git.
+fn git_commit() -> String {
+    let git = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
+    match git(&["rev-parse", "--short=10", "HEAD"]) {
+        None => "unknown".into(),
+        Some(h) => {
+            // the table itself is the one file the run changes: it does not make the tree dirty
+            let dirty = git(&[
+                "status",
+                "--porcelain",
+                "--untracked-files=no",
+                "--",
+                ":/",
+                ":(top,exclude)creep-core/data/accuracy.csv",
+            ])
+            .is_some_and(|s| !s.is_empty());
+            if dirty {
+                format!("{h}+dirty")
+            } else {
+                h
+            }
+        }
+    }
+}
+
+/// The current UTC time as `YYYY-MM-DD HH:MM` (civil calendar from the Unix day count).
+fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs() as i64)
+        .unwrap_or(0);
+    let (days, rem) = (secs.div_euclid(86400), secs.rem_euclid(86400));
+    // Howard Hinnant's days_from_civil inverse
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02} {:02}:{:02}",
+        rem / 3600,
+        rem % 3600 / 60
+    )
 }

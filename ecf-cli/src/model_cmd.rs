@@ -1,6 +1,8 @@
 //! The model commands of `ecf`: `curve`, `step`, `sine`, `field` and `info`, each writing its CSV (or text) into the output buffer.
 
 use clap::{Args, ValueEnum};
+use creep_core::engine::Scheme;
+use creep_core::tolerance::{self, Filter};
 use creep_core::{Config, CreepError, FieldPoint, Geometry, Grid, Inputs, Model, Outputs};
 use std::io::Write;
 use std::path::PathBuf;
@@ -19,18 +21,23 @@ pub(crate) enum SchemeArg {
 #[derive(Args, Clone)]
 pub(crate) struct TransientArgs {
     /// How a time step advances the bristles: cells (reference) or continuous (faster; see
-    /// docs/model.md section 3)
-    #[arg(long, value_enum, default_value_t = SchemeArg::Cells)]
-    scheme: SchemeArg,
+    /// docs/model.md section 3). Default: cells, or the scheme --tol chooses
+    #[arg(long, value_enum)]
+    scheme: Option<SchemeArg>,
 }
 
 impl TransientArgs {
-    fn apply(&self, model: &mut Model) {
-        use creep_core::engine::Scheme;
-        model.set_scheme(match self.scheme {
+    /// The scheme given explicitly, if any.
+    fn explicit(&self) -> Option<Scheme> {
+        self.scheme.map(|s| match s {
             SchemeArg::Cells => Scheme::CellsMarch,
             SchemeArg::Continuous => Scheme::Continuous,
-        });
+        })
+    }
+
+    /// Sets the scheme: the explicit one, else the one --tol chose, else cells.
+    fn apply(&self, model: &mut Model, chosen: Option<Scheme>) {
+        model.set_scheme(self.explicit().or(chosen).unwrap_or(Scheme::CellsMarch));
     }
 }
 
@@ -68,6 +75,13 @@ pub(crate) struct ModelArgs {
     /// Bristle grid NXxNY (cells per strip x strips), e.g. 40x21
     #[arg(long)]
     grid: Option<String>,
+    /// Relative tolerance on F_x, a fraction (0.01 = 1 %), ECF model only: the grid (and, for
+    /// step and sine, the scheme) is the cheapest in the accuracy benchmark's table whose
+    /// largest F_x error, worst over its presets and cases at the nearest tabulated speed not
+    /// below |--v-mps|, meets it (else the most accurate, with a warning); --grid and
+    /// --scheme override it. The choice is printed on stderr. Default: off (the preset's grid)
+    #[arg(long, value_parser = parse_tol)]
+    tol: Option<f64>,
     /// Lateral creepage, dimensionless
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     cy: f64,
@@ -113,7 +127,8 @@ pub(crate) struct CurveArgs {
 impl CurveArgs {
     pub(crate) fn run(&self, w: &mut Vec<u8>) -> Result<(), CreepError> {
         let m = &self.m;
-        let cfg = m.config()?;
+        let mut cfg = m.config()?;
+        m.apply_tol(&mut cfg, None, None)?;
         let list = parse_list(&self.cx)?;
         let mut model = m.model(&cfg)?;
         writeln!(w, "cx,{}", out_header()).map_err(io)?;
@@ -167,15 +182,16 @@ impl StepArgs {
     /// The fields along y = 0 at the instants of `--field-at-ms`.
     fn fields(&self, at: &str, w: &mut Vec<u8>) -> Result<(), CreepError> {
         let (m, dt_ms) = (&self.m, self.dt_ms);
-        let cfg = m.config()?;
+        let mut cfg = m.config()?;
         let at = parse_instants(at)?;
         if !(dt_ms.is_finite() && dt_ms > 0.0) {
             return Err(bad("--dt-ms", dt_ms, "must be finite and > 0 ms"));
         }
         let latest = at.iter().copied().fold(0.0, f64::max);
         check_step_count("--dt-ms", dt_ms, latest / dt_ms)?;
+        let chosen = m.apply_tol(&mut cfg, Some(dt_ms * 1e-3), Some(self.tr.explicit()))?;
         let mut model = m.model(&cfg)?;
-        self.tr.apply(&mut model);
+        self.tr.apply(&mut model, chosen);
         let mut o = model
             .steady(&m.inputs(self.cx_from))
             .map_err(|e| rename(e, "cx", "--cx-from"))?;
@@ -222,7 +238,7 @@ impl StepArgs {
     fn series(&self, w: &mut Vec<u8>) -> Result<(), CreepError> {
         let (m, duration_ms, dt_ms) = (&self.m, self.duration_ms, self.dt_ms);
         let (cx_from, cx_to) = (self.cx_from, self.cx_to);
-        let cfg = m.config()?;
+        let mut cfg = m.config()?;
         if !(duration_ms.is_finite() && duration_ms > 0.0 && duration_ms <= 1e6) {
             return Err(bad(
                 "--duration-ms",
@@ -234,8 +250,9 @@ impl StepArgs {
             return Err(bad("--dt-ms", dt_ms, "must be > 0 and <= --duration-ms"));
         }
         check_step_count("--dt-ms", dt_ms, duration_ms / dt_ms)?;
+        let chosen = m.apply_tol(&mut cfg, Some(dt_ms * 1e-3), Some(self.tr.explicit()))?;
         let mut model = m.model(&cfg)?;
-        self.tr.apply(&mut model);
+        self.tr.apply(&mut model, chosen);
         let o = model
             .steady(&m.inputs(cx_from))
             .map_err(|e| rename(e, "cx", "--cx-from"))?;
@@ -282,7 +299,7 @@ impl SineArgs {
     pub(crate) fn run(&self, w: &mut Vec<u8>) -> Result<(), CreepError> {
         let (m, cm, ca, freq_hz) = (&self.m, self.cm, self.ca, self.freq_hz);
         let (cycles, steps_per_cycle) = (self.cycles, self.steps_per_cycle);
-        let cfg = m.config()?;
+        let mut cfg = m.config()?;
         if !(freq_hz.is_finite() && freq_hz > 0.0) {
             return Err(bad("--freq-hz", freq_hz, "must be finite and > 0 Hz"));
         }
@@ -301,14 +318,15 @@ impl SineArgs {
             cycles as f64,
             cycles as f64 * steps_per_cycle as f64,
         )?;
+        let dt = 1.0 / (freq_hz * steps_per_cycle as f64);
+        let chosen = m.apply_tol(&mut cfg, Some(dt), Some(self.tr.explicit()))?;
         let mut model = m.model(&cfg)?;
-        self.tr.apply(&mut model);
+        self.tr.apply(&mut model, chosen);
         let o = model
             .steady(&m.inputs(cm))
             .map_err(|e| rename(e, "cx", "--cm"))?;
         writeln!(w, "t_s,cx,{}", out_header()).map_err(io)?;
         writeln!(w, "0,{cm},{}", out_row(&o)?).map_err(io)?;
-        let dt = 1.0 / (freq_hz * steps_per_cycle as f64);
         for k in 1..=(cycles * steps_per_cycle) {
             let t = k as f64 * dt;
             // creepage held constant over the step at its end value (Eq. 4.15)
@@ -336,7 +354,8 @@ pub(crate) struct FieldArgs {
 impl FieldArgs {
     pub(crate) fn run(&self, w: &mut Vec<u8>) -> Result<(), CreepError> {
         let m = &self.m;
-        let cfg = m.config()?;
+        let mut cfg = m.config()?;
+        m.apply_tol(&mut cfg, None, None)?;
         let mut model = m.model(&cfg)?;
         model
             .steady(&m.inputs(self.cx))
@@ -401,6 +420,15 @@ fn parse_instants(s: &str) -> Result<Vec<f64>, CreepError> {
         });
     }
     Ok(at)
+}
+
+/// The value of --tol: a finite relative tolerance > 0 (a fraction).
+fn parse_tol(s: &str) -> Result<f64, String> {
+    let x: f64 = s.trim().parse().map_err(|_| {
+        format!("'{s}' is not a number; give a relative tolerance, e.g. 0.01 for 1 %")
+    })?;
+    tolerance::check_tol(x, "--tol").map_err(|e| e.to_string())?;
+    Ok(x)
 }
 
 fn bad(field: &str, value: f64, expected: &str) -> CreepError {
@@ -510,6 +538,70 @@ impl ModelArgs {
             })?;
         }
         Ok(cfg)
+    }
+
+    /// With --tol: sets the grid of `cfg` chosen from the accuracy table and returns the
+    /// chosen scheme (None without --tol). `dt`: the time step (s) of a transient command;
+    /// `scheme`: None for the steady commands (curve, field: the cells scheme's rows, which
+    /// are the steady march's discretisation), else the explicit --scheme, if any. An
+    /// explicit --grid or --scheme restricts the choice to the table's rows with them; a
+    /// --grid not in the table is used as given, with a note that its error is not
+    /// tabulated. Prints the choice on stderr.
+    fn apply_tol(
+        &self,
+        cfg: &mut Config,
+        dt: Option<f64>,
+        scheme: Option<Option<Scheme>>,
+    ) -> Result<Option<Scheme>, CreepError> {
+        let Some(tol) = self.tol else {
+            return Ok(None);
+        };
+        if cfg.model != creep_core::ModelKind::Ecf {
+            return Err(CreepError::Config {
+                source_name: "--tol".into(),
+                message: format!(
+                    "the accuracy table is measured for the ECF model, not {}: give --grid instead",
+                    cfg.model.name()
+                ),
+            });
+        }
+        let steady = scheme.is_none();
+        let explicit_scheme = scheme.flatten();
+        let grid = self.grid.as_ref().map(|_| cfg.grid);
+        let filter = Filter {
+            nx: grid.map(|g| g.nx),
+            ny: grid.map(|g| g.ny),
+            scheme: if steady {
+                Some(Scheme::CellsMarch)
+            } else {
+                explicit_scheme
+            },
+        };
+        let dt = dt.filter(|d| d.is_finite() && *d > 0.0);
+        match tolerance::choose(tol, self.v_mps, dt, filter) {
+            Ok(c) => {
+                cfg.grid = Grid { nx: c.nx, ny: c.ny };
+                let what = if steady { " (steady: the grid)" } else { "" };
+                let given = if grid.is_some() || explicit_scheme.is_some() {
+                    " (within the explicit --grid/--scheme)"
+                } else {
+                    ""
+                };
+                let level = if c.met { "note" } else { "warning" };
+                eprintln!("{level}: --tol {tol}{what}{given}: {}", c.message());
+                Ok((!steady).then_some(c.scheme))
+            }
+            Err(CreepError::Config { .. }) if grid.is_some() || explicit_scheme.is_some() => {
+                eprintln!(
+                    "note: --tol {tol}: the accuracy table has no row with the explicit --grid {}x{}{}: its error is not measured; running with the explicit settings",
+                    cfg.grid.nx,
+                    cfg.grid.ny,
+                    explicit_scheme.map_or(String::new(), |s| format!(" and --scheme {}", tolerance::scheme_name(s)))
+                );
+                Ok(explicit_scheme)
+            }
+            Err(e) => Err(e),
+        }
     }
 
     /// A model with the extra column values set.

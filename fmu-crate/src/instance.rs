@@ -5,6 +5,7 @@ use crate::vars::{
     self, core_inputs, Causality, Geo, In, Kind, Out, Slot, Start, Value, Var, N_INPUTS,
 };
 use creep_core::engine::io::InputId;
+use creep_core::engine::Scheme;
 use creep_core::{Config, Model, Outputs};
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -215,6 +216,8 @@ pub struct Instance {
     model_current: bool,
     /// The last fmi2ExitInitializationMode failed (no FMU state is handed out until one succeeds).
     init_failed: bool,
+    /// The scheme rel_tol chose when the model was built (None: rel_tol off or not applied).
+    tol_scheme: Option<Scheme>,
     logs: Vec<LogMsg>,
     log_events: bool,
     seen: HashSet<String>,
@@ -293,6 +296,7 @@ impl Instance {
             model: None,
             model_current: false,
             init_failed: false,
+            tol_scheme: None,
             logs: Vec::new(),
             log_events: logging_on,
             seen: HashSet::new(),
@@ -319,6 +323,7 @@ impl Instance {
         self.model = None;
         self.model_current = false;
         self.init_failed = false;
+        self.tol_scheme = None;
         self.seen.clear();
     }
 
@@ -485,7 +490,38 @@ impl Instance {
             "fmi2ExitInitializationMode: initialized at t = {} s with {cfg}",
             self.time
         ));
+        st = st.max(self.log_tolerance_choice());
         st.max(self.drain_model_warnings("fmi2ExitInitializationMode"))
+    }
+
+    /// Logs what rel_tol chose at initialization: the grid, scheme and tabulated error as an
+    /// event (logEvents); a warning when the tolerance is not met, when the table has no row
+    /// for the explicit settings, or when the model is not ECF.
+    fn log_tolerance_choice(&mut self) -> Status {
+        const F: &str = "fmi2ExitInitializationMode";
+        if self.settings.rel_tol <= 0.0 {
+            return Status::Ok;
+        }
+        let Some(cfg) = self.model.as_ref().map(|m| m.config().clone()) else {
+            return Status::Ok;
+        };
+        let tol = self.settings.rel_tol;
+        match self.settings.tolerance_choice(&cfg, self.speed()) {
+            None => self.warn(format!(
+                "{F}: rel_tol = {tol} is ignored: the accuracy table is measured for the ECF model, not {}; the grid comes from nx, ny and the configuration",
+                cfg.model.name()
+            )),
+            Some(Err(e)) => self.warn(format!("{F}: {e}")),
+            Some(Ok(c)) => {
+                let text = format!("{F}: rel_tol = {tol} at v = {} m/s: {}", self.speed(), c.message());
+                if c.met {
+                    self.event(text);
+                    Status::Ok
+                } else {
+                    self.warn(text)
+                }
+            }
+        }
     }
 
     /// fmi2Terminate.
@@ -634,7 +670,18 @@ impl Instance {
     }
 
     fn config(&mut self) -> Result<&Config, String> {
-        cached_config(&mut self.cfg, &self.settings, self.resources.as_deref())
+        let v = self.inputs[In::Core(InputId::V).index()];
+        cached_config(&mut self.cfg, &self.settings, self.resources.as_deref(), v)
+    }
+
+    /// The speed input v, m/s (its current value; at initialization, its start value).
+    fn speed(&self) -> f64 {
+        self.inputs[In::Core(InputId::V).index()]
+    }
+
+    /// The scheme the model runs: the one rel_tol chose, else the parameter `scheme`.
+    fn scheme(&self) -> Scheme {
+        self.tol_scheme.unwrap_or_else(|| self.settings.scheme())
     }
 
     /// The outputs for the current inputs: after initialization those of the last step; in
@@ -676,6 +723,10 @@ impl Instance {
         if rebuild {
             self.model = Some(Model::new(&cfg).map_err(|e| e.to_string())?);
         }
+        self.tol_scheme = match self.settings.tolerance_choice(&cfg, self.speed()) {
+            Some(Ok(c)) => Some(c.scheme),
+            _ => None,
+        };
         self.apply_how_to_compute()?;
         let inputs = core_inputs(&self.inputs);
         let extra = self.extras(&cfg)?;
@@ -704,13 +755,22 @@ impl Instance {
 
     /// The value of a parameter: as set, or from the resolved configuration.
     fn parameter(&mut self, func: &str, v: &Var) -> Result<Value, Status> {
+        if v.slot == Slot::Scheme {
+            if let Some(s) = self.tol_scheme {
+                // the scheme rel_tol chose, as the parameter's code
+                return Ok(Value::Integer(i32::from(s == Scheme::Continuous)));
+            }
+        }
+        let speed = self.speed();
         let Instance {
             settings,
             cfg,
             resources,
             ..
         } = self;
-        match settings.get(v, || cached_config(cfg, settings, resources.as_deref())) {
+        match settings.get(v, || {
+            cached_config(cfg, settings, resources.as_deref(), speed)
+        }) {
             Some(Ok(x)) => Ok(x),
             Some(Err(e)) => {
                 Err(self.error(format!("{func}: {}: configuration error: {e}", v.name)))
@@ -869,6 +929,13 @@ impl Instance {
                 let x = *x;
                 self.inputs[i.index()] = x;
                 self.model_current = false;
+                if i == In::Core(InputId::V)
+                    && self.settings.rel_tol > 0.0
+                    && matches!(self.phase, Phase::Instantiated | Phase::Initialization)
+                {
+                    // rel_tol chooses the grid at the speed the initialization ends with
+                    self.cfg = None;
+                }
                 return match i {
                     In::Core(InputId::Cx | InputId::Cy) if x.abs() > 1.0 => self.warn(format!(
                         "{func}: {} = {x} ({:.0} %): |{}| > 1 is beyond the range of rolling contact (the wheel slips more than it rolls); computed anyway",
@@ -933,7 +1000,7 @@ impl Instance {
     /// Gives the model the importer's `threads` and `scheme` (settings of the instance, not
     /// of a state: they say how to compute, not what).
     fn apply_how_to_compute(&mut self) -> Result<(), String> {
-        let (n, scheme) = (self.settings.threads.max(1), self.settings.scheme());
+        let (n, scheme) = (self.settings.threads.max(1), self.scheme());
         match self.model.as_mut() {
             Some(m) => {
                 m.set_scheme(scheme);
@@ -951,15 +1018,20 @@ impl Instance {
                 "{F}: the state is refused ({e}); the instance is unchanged"
             ));
         }
-        // the importer's threads and scheme stay (a serialized state does not carry them)
-        let (threads, scheme) = (self.settings.threads, self.settings.scheme);
+        // the importer's threads, scheme and rel_tol stay (a serialized state does not carry
+        // them), and so does the scheme rel_tol chose
+        let (threads, scheme, rel_tol) = (
+            self.settings.threads,
+            self.settings.scheme,
+            self.settings.rel_tol,
+        );
         // a state taken before initialization completed holds at most a provisional model (the
         // steady state of the inputs it had then): it is rebuilt from the restored inputs at
         // fmi2ExitInitializationMode, as in the instance that took it
         let live = matches!(s.phase, Phase::StepComplete | Phase::Terminated);
         let mut model = if live { s.model.clone() } else { None };
         if let Some(m) = model.as_mut() {
-            m.set_scheme(self.settings.scheme());
+            m.set_scheme(self.scheme());
             if let Err(e) = m.set_threads(threads.max(1)) {
                 return self.error(format!("{F}: {e}; the instance is unchanged"));
             }
@@ -967,6 +1039,7 @@ impl Instance {
         self.settings = s.settings.clone();
         self.settings.threads = threads;
         self.settings.scheme = scheme;
+        self.settings.rel_tol = rel_tol;
         self.inputs = s.inputs;
         self.time = s.time;
         self.cfg = s.cfg.clone();
@@ -989,9 +1062,10 @@ fn cached_config<'a>(
     cache: &'a mut Option<Config>,
     settings: &Settings,
     resources: Option<&Path>,
+    v: f64,
 ) -> Result<&'a Config, String> {
     if cache.is_none() {
-        *cache = Some(settings.resolve(resources)?);
+        *cache = Some(settings.resolve(resources, v)?);
     }
     cache.as_ref().ok_or_else(|| "no configuration".to_string())
 }
@@ -1208,5 +1282,145 @@ mod tests {
             a > 1e-3 && a < 2e-2 && b > 1e-3 && b < 2e-2,
             "a = {a}, b = {b}"
         );
+    }
+
+    /// An instance with rel_tol, the speed v and the integer settings given, initialized;
+    /// returns it with its exit_initialization status and logs.
+    fn with_tol(rel_tol: f64, v: f64, ints: &[(&str, i32)]) -> (Instance, Status, Vec<LogMsg>) {
+        let mut i = Instance::new("t", None, true);
+        assert_eq!(i.set_real(vr("rel_tol"), rel_tol), Status::Ok);
+        assert_eq!(i.set_real(vr("v"), v), Status::Ok);
+        for (n, x) in ints {
+            assert_eq!(i.set_integer(vr(n), *x), Status::Ok);
+        }
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        let st = i.exit_initialization();
+        let logs = i.take_logs();
+        (i, st, logs)
+    }
+
+    #[test]
+    fn rel_tol_runs_on_the_grid_and_scheme_the_table_gives_and_logs_them() {
+        use creep_core::tolerance::{self, Filter};
+        for (tol, v) in [(0.05, 5.0), (0.02, 30.0), (0.01, 5.0)] {
+            let c = tolerance::choose(tol, v, None, Filter::default()).expect("choice");
+            assert!(c.met, "{tol} at {v}: the test wants a met tolerance");
+            let (mut i, st, logs) = with_tol(tol, v, &[]);
+            assert_eq!(st, Status::Ok, "{logs:?}");
+            assert_eq!(i.get_integer(vr("nx")), Ok(c.nx as i32));
+            assert_eq!(i.get_integer(vr("ny")), Ok(c.ny as i32));
+            let code = i32::from(c.scheme == Scheme::Continuous);
+            assert_eq!(i.get_integer(vr("scheme")), Ok(code));
+            assert_eq!(i.get_real(vr("rel_tol")), Ok(tol));
+            let m = i.model().expect("model");
+            assert_eq!(m.config().grid.nx, c.nx);
+            let grid = format!("grid {}x{}", c.nx, c.ny);
+            assert!(
+                logs.iter().any(|l| l.category == "logEvents"
+                    && l.text.contains(&grid)
+                    && l.text.contains(&format!("{:.2} %", c.fx_err_pct))),
+                "{logs:?}"
+            );
+            // the chosen scheme is the one that steps: the same Fx as the explicit settings
+            let mut j = Instance::new("t", None, false);
+            assert_eq!(j.set_real(vr("v"), v), Status::Ok);
+            for (n, x) in [("nx", c.nx as i32), ("ny", c.ny as i32), ("scheme", code)] {
+                assert_eq!(j.set_integer(vr(n), x), Status::Ok);
+            }
+            assert_eq!(j.enter_initialization(), Status::Ok);
+            assert_eq!(j.exit_initialization(), Status::Ok);
+            for inst in [&mut i, &mut j] {
+                assert_eq!(inst.set_real(vr("cx"), 0.05), Status::Ok);
+                assert_eq!(inst.do_step(0.0, 2.5e-4), Status::Ok);
+            }
+            assert_eq!(i.get_real(vr("Fx")), j.get_real(vr("Fx")));
+        }
+    }
+
+    #[test]
+    fn rel_tol_off_and_explicit_settings_keep_the_grid() {
+        let preset = default_grid();
+        // off: the preset's grid
+        let (mut i, st, _) = with_tol(0.0, 5.0, &[]);
+        assert_eq!(st, Status::Ok);
+        assert_eq!(i.get_integer(vr("nx")), Ok(preset.0));
+        assert_eq!(i.get_integer(vr("scheme")), Ok(0));
+        // explicit nx, ny override a loose tolerance that would choose another grid
+        let loose = creep_core::tolerance::choose(0.5, 5.0, None, Default::default()).expect("c");
+        assert_ne!((loose.nx, loose.ny), (80, 21));
+        let (mut i, st, logs) = with_tol(0.5, 5.0, &[("nx", 80), ("ny", 21)]);
+        assert_eq!(st, Status::Ok, "{logs:?}");
+        assert_eq!(i.get_integer(vr("nx")), Ok(80));
+        assert_eq!(i.get_integer(vr("ny")), Ok(21));
+        // an explicit grid the table does not have: used, with a warning
+        let (mut i, st, logs) = with_tol(0.01, 5.0, &[("nx", 30), ("ny", 7)]);
+        assert_eq!(st, Status::Warning, "{logs:?}");
+        assert_eq!(i.get_integer(vr("nx")), Ok(30));
+        assert!(logs.iter().any(|l| l.text.contains("nx = 30")), "{logs:?}");
+    }
+
+    fn default_grid() -> (i32, i32) {
+        let g = vars::default_config().grid;
+        (g.nx as i32, g.ny as i32)
+    }
+
+    #[test]
+    fn a_rel_tol_no_grid_meets_warns_with_the_error_reached() {
+        let (mut i, st, logs) = with_tol(1e-5, 20.0, &[]);
+        assert_eq!(st, Status::Warning, "{logs:?}");
+        let c = creep_core::tolerance::choose(1e-5, 20.0, None, Default::default()).expect("c");
+        assert_eq!(i.get_integer(vr("nx")), Ok(c.nx as i32));
+        assert!(
+            logs.iter()
+                .any(|l| l.category == "logStatusWarning" && l.text.contains("NOT met")),
+            "{logs:?}"
+        );
+    }
+
+    #[test]
+    fn rel_tol_follows_v_set_during_initialization_not_after() {
+        use creep_core::tolerance::choose;
+        let (at5, at30) = (
+            choose(0.02, 5.0, None, Default::default()).expect("c"),
+            choose(0.02, 30.0, None, Default::default()).expect("c"),
+        );
+        assert_ne!(
+            (at5.nx, at5.ny),
+            (at30.nx, at30.ny),
+            "the test needs two grids"
+        );
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.set_real(vr("rel_tol"), 0.02), Status::Ok);
+        assert_eq!(i.set_real(vr("v"), 5.0), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.get_integer(vr("nx")), Ok(at5.nx as i32));
+        assert_eq!(i.set_real(vr("v"), 30.0), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        assert_eq!(i.get_integer(vr("nx")), Ok(at30.nx as i32));
+        assert_eq!(i.set_real(vr("v"), 5.0), Status::Ok);
+        assert_eq!(i.do_step(0.0, 1e-3), Status::Ok);
+        assert_eq!(i.get_integer(vr("nx")), Ok(at30.nx as i32));
+    }
+
+    #[test]
+    fn bad_rel_tol_is_refused_with_a_message_and_the_value_kept() {
+        for bad in [-0.01, f64::NAN, f64::INFINITY, 1.5] {
+            let mut i = Instance::new("t", None, false);
+            assert_eq!(i.set_real(vr("rel_tol"), bad), Status::Error, "{bad}");
+            let logs = i.take_logs();
+            assert!(
+                logs.iter().any(|l| l.text.contains("rel_tol")),
+                "{bad}: {logs:?}"
+            );
+            assert_eq!(i.enter_initialization(), Status::Ok);
+            assert_eq!(i.get_real(vr("rel_tol")), Ok(0.0));
+        }
+        // fastsim: ignored with a warning
+        let mut i = Instance::new("t", None, true);
+        assert_eq!(i.set_real(vr("rel_tol"), 0.01), Status::Ok);
+        assert_eq!(i.set_string(vr("preset"), "fastsim"), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Warning);
+        assert!(i.take_logs().iter().any(|l| l.text.contains("ECF model")));
     }
 }

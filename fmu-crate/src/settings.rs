@@ -185,6 +185,8 @@ pub struct Settings {
     pub threads: usize,
     /// How a step advances the bristles: 0 cell by cell, 1 continuous.
     pub scheme: i32,
+    /// Relative tolerance on F_x that chooses the grid and scheme at initialization (fraction; 0 = off).
+    pub rel_tol: f64,
     /// Geometry mode: 0 configuration, 1 semi-axes, 2 curvatures.
     pub geometry: i32,
     /// Geometry values set by the importer, in the order of [`Geo::ALL`], SI.
@@ -211,6 +213,12 @@ impl Settings {
             scratch
                 .set(*p, *x)
                 .map_err(|e| format!("parameters: {e}"))?;
+        }
+        if !(self.rel_tol == 0.0 || (self.rel_tol > 0.0 && self.rel_tol <= 1.0)) {
+            return Err(format!(
+                "rel_tol = {} (must be 0 or within (0, 1])",
+                self.rel_tol
+            ));
         }
         if !(0..=2).contains(&self.geometry) {
             return Err(format!("geometry = {} (must be 0, 1 or 2)", self.geometry));
@@ -269,6 +277,21 @@ impl Settings {
                     Ok(())
                 }
             }
+            (Slot::RelTol, Value::Real(x)) => {
+                if *x == 0.0 {
+                    Ok(())
+                } else {
+                    creep_core::tolerance::check_tol(*x, "rel_tol")
+                        .map_err(|e| format!("{e}; or 0: off"))
+                        .and_then(|()| {
+                            if *x <= 1.0 {
+                                Ok(())
+                            } else {
+                                Err(format!("rel_tol = {x}: must be within [0, 1] (a fraction: 0.01 = 1 %; 0: off)"))
+                            }
+                        })
+                }
+            }
             (Slot::Effect(_), Value::Boolean(_)) => Ok(()),
             (Slot::Model, Value::String(x)) if !x.is_empty() => ModelKind::parse(x)
                 .map(|_| ())
@@ -305,6 +328,7 @@ impl Settings {
             (Slot::Ny, Value::Integer(x)) => self.ny = (*x > 0).then_some(*x as usize),
             (Slot::Threads, Value::Integer(x)) => self.threads = (*x).max(1) as usize,
             (Slot::Scheme, Value::Integer(x)) => self.scheme = *x,
+            (Slot::RelTol, Value::Real(x)) => self.rel_tol = *x,
             (Slot::Effect(e), Value::Boolean(x)) => {
                 if v.start == Start::Boolean(*x) {
                     self.effects.remove(&e);
@@ -349,6 +373,7 @@ impl Settings {
             Slot::GeometryMode => Value::Integer(self.geometry),
             Slot::Threads => Value::Integer(self.threads.max(1) as i32),
             Slot::Scheme => Value::Integer(self.scheme),
+            Slot::RelTol => Value::Real(self.rel_tol),
             Slot::Nx | Slot::Ny => match cfg() {
                 Ok(c) => Value::Integer(if v.slot == Slot::Nx {
                     c.grid.nx
@@ -434,9 +459,36 @@ impl Settings {
         }
     }
 
+    /// The grid and scheme that `rel_tol` chooses at speed `v` (m/s), None when rel_tol = 0
+    /// or the model is not ECF (the table is measured for it). Explicit nx, ny and scheme = 1
+    /// restrict the choice to the table's rows with them; Err when the table has none.
+    pub fn tolerance_choice(
+        &self,
+        cfg: &Config,
+        v: f64,
+    ) -> Option<Result<creep_core::tolerance::Choice, String>> {
+        if self.rel_tol <= 0.0 || cfg.model != ModelKind::Ecf {
+            return None;
+        }
+        let filter = creep_core::tolerance::Filter {
+            nx: self.nx,
+            ny: self.ny,
+            scheme: (self.scheme == 1).then_some(Scheme::Continuous),
+        };
+        Some(
+            creep_core::tolerance::choose(self.rel_tol, v, None, filter).map_err(|e| {
+                format!(
+                    "rel_tol = {}: {e}; the explicit settings are used",
+                    self.rel_tol
+                )
+            }),
+        )
+    }
+
     /// Resolves the configuration: preset or file (relative paths against `resources`),
-    /// then every parameter the importer set.
-    pub fn resolve(&self, resources: Option<&Path>) -> Result<Config, String> {
+    /// then every parameter the importer set; with rel_tol > 0, the grid it chooses at the
+    /// speed `v` (m/s, the input's current value).
+    pub fn resolve(&self, resources: Option<&Path>, v: f64) -> Result<Config, String> {
         let s = self;
         let mut cfg = self.base_config(resources)?;
         for (p, x) in &s.params {
@@ -480,6 +532,9 @@ impl Settings {
         }
         if cfg.model == ModelKind::Fastsim && !cfg.effects.has(Effect::Coulomb) {
             return Err("model fastsim needs effect_coulomb = true".into());
+        }
+        if let Some(Ok(c)) = self.tolerance_choice(&cfg, v) {
+            cfg.grid = Grid { nx: c.nx, ny: c.ny };
         }
         Ok(cfg)
     }

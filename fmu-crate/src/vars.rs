@@ -333,6 +333,8 @@ pub enum Slot {
     Threads,
     /// How a step advances the bristles (0 cells, 1 continuous).
     Scheme,
+    /// Relative tolerance on F_x that chooses the grid and scheme (0: off).
+    RelTol,
     /// An effect switch.
     Effect(Effect),
     /// Model family name.
@@ -701,6 +703,19 @@ pub fn table() -> Vec<Var> {
             slot: Slot::Param(s.id),
         });
     }
+    // added after the released variables, so that none of their indices moves
+    v.push(Var {
+        name: "rel_tol".into(),
+        vr: 45,
+        kind: Kind::Real,
+        causality: Parameter,
+        unit: None,
+        description: "relative tolerance on F_x, a fraction (0.01 = 1 %), ECF model only; 0 (default) = off: the grid comes from nx, ny and the preset. > 0: at fmi2ExitInitializationMode the grid and scheme are the cheapest in the accuracy benchmark's table (creep-core/data/accuracy.csv) whose largest F_x error, worst over its presets and cases at the nearest tabulated speed not below |v| (the value of v then), meets it, else the most accurate (with a warning); nx, ny and scheme = 1 set explicitly override it (docs/fmu.md)".into(),
+        start: Start::Real(0.0),
+        min: Some(0.0),
+        max: Some(1.0),
+        slot: Slot::RelTol,
+    });
     v
 }
 
