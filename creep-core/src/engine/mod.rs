@@ -514,12 +514,7 @@ impl Contact {
             *a = [0.0; N_KERNEL];
         }
         self.reset_nodes();
-        self.out = Outputs {
-            t_max: self.inputs.t_bulk,
-            t_mean: self.inputs.t_bulk,
-            frac_elastic: 1.0,
-            ..Outputs::default()
-        };
+        self.out = Outputs::unloaded(self.inputs.t_bulk);
         self.out
     }
 
@@ -744,17 +739,12 @@ pub(crate) fn mirror_inputs(i: &Inputs, on: bool) -> Inputs {
     }
 }
 
-/// Outputs of the mirror image x -> -x (`on`): F_x, f and M_z change sign. An involution.
+/// Outputs of the mirror image x -> -x (`on`, [`Outputs::mirrored`]). An involution.
 fn mirror_outputs(o: Outputs, on: bool) -> Outputs {
     if !on {
         return o;
     }
-    Outputs {
-        fx: -o.fx,
-        f: -o.f,
-        mz: -o.mz,
-        ..o
-    }
+    o.mirrored()
 }
 
 #[cfg(test)]
