@@ -331,19 +331,15 @@ impl Resolved {
         self.tc1_t.max(self.tc2_t).max(self.lp_t)
     }
 
-    /// True if the layer only softens as it heats (tau_c1, tau_c2 fall and L_p rises with
-    /// T, L_e does not depend on T): the Voce law with temperature, no Coulomb bound. Then a
-    /// bristle that is elastic, hardening or sliding at the lowest temperature of its solve
-    /// stays so along the solve's path ([`crate::bristle::SofteningPath`]) while the
-    /// hardening span tau_c2 - tau_c1 stays open (see [`Self::span_may_close`]).
+    /// True if the layer's parameters only soften it as it heats (tau_c1, tau_c2 fall and
+    /// L_p rises with T, L_e does not depend on T). With the Voce law and the temperature on
+    /// and no Coulomb bound (the effects of [`crate::engine::FastPath::Softening`],
+    /// engine/fastpath.rs `SOFTENING`), a bristle that is elastic, hardening or sliding at
+    /// the lowest temperature of its solve then stays so along the solve's path
+    /// ([`crate::bristle::SofteningPath`]) while the hardening span tau_c2 - tau_c1 stays
+    /// open (see [`Self::span_may_close`]).
     pub(crate) fn monotone_softening(&self) -> bool {
-        self.temperature
-            && self.plastic
-            && !self.coulomb
-            && self.tc1_t >= 0.0
-            && self.tc2_t >= 0.0
-            && self.lp_t >= 0.0
-            && self.le_t == 0.0
+        self.tc1_t >= 0.0 && self.tc2_t >= 0.0 && self.lp_t >= 0.0 && self.le_t == 0.0
     }
 
     /// True if tau_c1 softens more slowly than tau_c2: heating then narrows the span

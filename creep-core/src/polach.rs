@@ -17,12 +17,7 @@ use std::f64::consts::PI;
 pub fn polach(cfg: &Config, i: &Inputs) -> Result<Outputs> {
     i.validate()?;
     if i.fn_n <= 0.0 {
-        return Ok(Outputs {
-            t_max: i.t_bulk,
-            t_mean: i.t_bulk,
-            frac_elastic: 1.0,
-            ..Outputs::default()
-        });
+        return Ok(Outputs::unloaded(i.t_bulk));
     }
     let p = &cfg.params;
     let patch = patch_for(cfg, i.fn_n)?;
@@ -30,16 +25,16 @@ pub fn polach(cfg: &Config, i: &Inputs) -> Result<Outputs> {
     let (ka, kb) = if patch.line { (a, 1e6 * a) } else { (a, b) };
     let c = kalker::coefficients(ka, kb, p.si(P::Nu))?;
     let s = (i.cx * i.cx + i.cy * i.cy).sqrt();
+    // the loaded patch; the forces, power and regime fractions are set below (M_z and the
+    // plastic fraction stay 0: spin and plasticity are not in this form)
     let mut out = Outputs {
         a,
         b,
         p0: patch.p0,
-        t_max: i.t_bulk,
-        t_mean: i.t_bulk,
-        ..Outputs::default()
+        ..Outputs::unloaded(i.t_bulk)
     };
     if s <= 0.0 {
-        out.frac_elastic = 1.0;
+        // no creepage: no force, every bristle adheres
         return Ok(out);
     }
     // slip velocity: creepages are slip velocities over |v| (v < 0 rolls backwards, the

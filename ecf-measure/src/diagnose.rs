@@ -11,10 +11,13 @@
 //! 3. Candidates are ranked by held-out CV(RMSE). A missing effect is claimed only when the
 //!    best candidate lowers the held-out error by at least `CLAIM_FRACTION` of the baseline.
 
-use crate::evaluate::{predict_warned, predict_with, Memo, ModelWarning, Prediction};
+use crate::evaluate::{predict_warned, Memo, ModelWarning};
 use crate::fit::{default_free, fit_params_with, FitOptions, FreeParam};
+pub use crate::heldout::CLAIM_FRACTION;
+use crate::heldout::{folds, heldout};
 use crate::measure::Dataset;
-use crate::stats::{cv_rmse_pct, mean_sd, pearson};
+pub use crate::residuals::{correlations, Correlation};
+use crate::stats::{cv_rmse_pct, mean_sd};
 use creep_core::config::{Config, ModelKind};
 use creep_core::effects::{self, Effect};
 use creep_core::error::Result;
@@ -22,26 +25,12 @@ use creep_core::formula::{FormulaEffect, FormulaParam, Target};
 use creep_core::params::P;
 use creep_core::Modifier;
 
-/// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
-pub const CLAIM_FRACTION: f64 = 0.25;
-
 /// A held-out CV(RMSE) up to this many times the noise level counts as at the noise: a model
 /// with nothing missing scores the noise plus what fitting on the other folds adds.
 pub const AT_NOISE: f64 = 1.5;
 
 /// |r| from which an extra column counts as showing strong residual structure.
 pub const STRONG: f64 = 0.3;
-
-/// Correlation of the residuals with one variable.
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct Correlation {
-    /// Variable name.
-    pub variable: String,
-    /// Pearson correlation coefficient of residual (model - measured) and variable.
-    pub r: f64,
-    /// Number of rows.
-    pub n: usize,
-}
 
 /// One tried effect.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -101,131 +90,6 @@ pub struct Diagnosis {
     /// Warnings the model raised for the rows under the configuration as given (wheel slide,
     /// Péclet condition, ...), counted per series.
     pub warnings: Vec<ModelWarning>,
-}
-
-/// Residual correlations with every variable, strongest first.
-pub fn correlations(data: &Dataset, pred: &[Prediction]) -> Vec<Correlation> {
-    let res: Vec<f64> = data.rows.iter().zip(pred).map(|(r, p)| p.f - r.f).collect();
-    let mut vars: Vec<(String, Vec<f64>)> = vec![
-        ("cx".into(), data.rows.iter().map(|r| r.cx.abs()).collect()),
-        (
-            "slip_velocity_mps".into(),
-            pred.iter().map(|p| p.slip_velocity).collect(),
-        ),
-        (
-            "frictional_power_W".into(),
-            pred.iter().map(|p| p.p_fric).collect(),
-        ),
-        (
-            "model_T_max_C".into(),
-            pred.iter().map(|p| p.t_max).collect(),
-        ),
-        ("v_mps".into(), data.rows.iter().map(|r| r.v).collect()),
-        (
-            "fn_kN".into(),
-            data.rows.iter().map(|r| r.fn_n / 1e3).collect(),
-        ),
-        ("p0_MPa".into(), pred.iter().map(|p| p.p0 / 1e6).collect()),
-    ];
-    if data.rows.iter().any(|r| r.t.is_some()) {
-        vars.push((
-            "dcx_dt_per_s".into(),
-            pred.iter().map(|p| p.dcx_dt.abs()).collect(),
-        ));
-    }
-    for (k, n) in data.extra_names.iter().enumerate() {
-        vars.push((n.clone(), data.rows.iter().map(|r| r.extra[k]).collect()));
-    }
-    let mut out: Vec<Correlation> = vars
-        .into_iter()
-        .map(|(v, x)| Correlation {
-            variable: v,
-            r: pearson(&x, &res),
-            n: res.len(),
-        })
-        .collect();
-    out.sort_by(|a, b| b.r.abs().total_cmp(&a.r.abs()));
-    out
-}
-
-/// Fold labels: by speed, else load, else series, else 3 interleaved folds.
-fn folds(data: &Dataset) -> (String, Vec<usize>) {
-    type KeyFn = fn(&crate::measure::Row) -> String;
-    let by: [(&str, KeyFn); 3] = [
-        ("v_mps", |r| format!("{}", r.v)),
-        ("fn_kN", |r| format!("{}", r.fn_n)),
-        ("series", |r| r.series.clone()),
-    ];
-    for (name, key) in by.iter() {
-        let mut values: Vec<String> = Vec::new();
-        let labels: Vec<usize> = data
-            .rows
-            .iter()
-            .map(|r| {
-                let k = key(r);
-                match values.iter().position(|v| *v == k) {
-                    Some(i) => i,
-                    None => {
-                        values.push(k);
-                        values.len() - 1
-                    }
-                }
-            })
-            .collect();
-        if values.len() >= 2 {
-            return (name.to_string(), labels);
-        }
-    }
-    (
-        "rows (3 interleaved folds)".into(),
-        (0..data.rows.len()).map(|i| i % 3).collect(),
-    )
-}
-
-pub(crate) fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
-    Dataset {
-        source: data.source.clone(),
-        extra_names: data.extra_names.clone(),
-        columns: data.columns.clone(),
-        delimiter: data.delimiter,
-        rows: data
-            .rows
-            .iter()
-            .zip(keep)
-            .filter(|(_, k)| **k)
-            .map(|(r, _)| r.clone())
-            .collect(),
-    }
-}
-
-/// Held-out CV(RMSE): fit `free` on all folds but one, predict that one.
-pub(crate) fn heldout(
-    cfg: &Config,
-    data: &Dataset,
-    labels: &[usize],
-    free: &[FreeParam],
-    threads: usize,
-    opts: &FitOptions,
-) -> Result<f64> {
-    let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
-    let mut meas = Vec::new();
-    let mut model = Vec::new();
-    for f in 0..nf {
-        let train = subset(data, &labels.iter().map(|l| *l != f).collect::<Vec<_>>());
-        let test = subset(data, &labels.iter().map(|l| *l == f).collect::<Vec<_>>());
-        if test.rows.is_empty() {
-            continue;
-        }
-        let fitted = if free.is_empty() || train.rows.len() <= free.len() {
-            cfg.clone()
-        } else {
-            crate::fit::fitted_or_kept(cfg, &train, free, threads, opts)?
-        };
-        let p = predict_with(&fitted, &test, threads, opts.memo)?;
-        meas.extend(test.rows.iter().map(|r| r.f));
-        model.extend(p.iter().map(|p| p.f));
-    }
-    Ok(cv_rmse_pct(&meas, &model))
 }
 
 /// Parameters an effect brings when it is added.

@@ -14,9 +14,9 @@
 //! [`REFIT_HELDOUT`] are then fitted on the same folds with the diagnosis' free parameters plus
 //! k, as the catalogue candidates are, and ranked by that held-out error.
 
-use crate::diagnose::{heldout, subset};
 use crate::evaluate::{predict_with, Prediction};
 use crate::fit::{fit_params_with, FitOptions, FreeParam};
+use crate::heldout::{heldout, subset, CLAIM_FRACTION};
 use crate::measure::Dataset;
 use crate::stats::{cv_rmse_pct, mean_sd};
 use creep_core::config::Config;
@@ -75,7 +75,7 @@ pub struct Search {
     /// Time spent, s.
     pub seconds: f64,
     /// The best form, when it beats the best model so far by more than the noise on the
-    /// held-out folds (without a noise estimate: by [`crate::diagnose::CLAIM_FRACTION`]).
+    /// held-out folds (without a noise estimate: by [`crate::heldout::CLAIM_FRACTION`]).
     pub proposed: Option<Form>,
     /// The configuration with the proposed form, fitted on all rows: ready for `ecf fit` and
     /// the FMU.
@@ -205,7 +205,7 @@ pub(crate) fn search(
     cfg: &Config,
     data: &Dataset,
     pred: &[Prediction],
-    corr: &[crate::diagnose::Correlation],
+    corr: &[crate::residuals::Correlation],
     labels: &[usize],
     base_free: &[FreeParam],
     threads: usize,
@@ -235,7 +235,7 @@ pub(crate) fn search(
     let mut proposed_config = s.refit_best(&mut forms)?;
     let margin_ok = |h: f64| match noise_cv {
         Some(n) => h < best_heldout - n,
-        None => h < (1.0 - crate::diagnose::CLAIM_FRACTION) * best_heldout,
+        None => h < (1.0 - CLAIM_FRACTION) * best_heldout,
     };
     let proposed = forms
         .first()
@@ -274,7 +274,7 @@ fn targets(cfg: &Config) -> Vec<Target> {
 fn ranked_variables(
     data: &Dataset,
     pred: &[Prediction],
-    corr: &[crate::diagnose::Correlation],
+    corr: &[crate::residuals::Correlation],
 ) -> Vec<Var> {
     let mut vars = variables(data, pred);
     let strength = |v: &Var| {

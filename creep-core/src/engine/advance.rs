@@ -170,8 +170,7 @@ impl Contact {
         // Without a temperature coefficient of L_e (every preset) and without formula
         // effects, material_base gives L_e = the node's (divided by exactly 1): the same for
         // every trial temperature, so this is computed once per move, not per evaluation.
-        let fixed = (!self.has_modifiers() && (self.r.le_t == 0.0 || !self.r.temperature))
-            .then(|| flex(np.le));
+        let fixed = self.fast.fixed_le.then(|| flex(np.le));
         // the law's material-independent parts of this move, shared by all evaluations
         let mut mv = (self.r.rule == bristle::Rule::SameCharacteristic)
             .then(|| bristle::Move::new(&old, du));
@@ -623,15 +622,12 @@ impl Contact {
         }
     }
 
-    /// True if the dedicated FASTSIM march applies: Coulomb bound, no layer elasticity, no
-    /// temperature, no modifiers (the `fastsim` preset).
+    /// True if the dedicated FASTSIM march applies: the configuration lies within what
+    /// [`super::FastPath::Coulomb`] supports (engine/fastpath.rs `COULOMB`; the `fastsim`
+    /// preset).
     #[inline]
     pub(super) fn coulomb_path(&self) -> bool {
-        self.r.coulomb
-            && !self.r.layer_el
-            && !self.r.temperature
-            && self.r.rule == bristle::Rule::ElasticUnloading
-            && !self.has_modifiers()
+        self.fast.coulomb
     }
 
     /// The march of [`Self::march_new`] at phase 0 for FASTSIM (see [`Self::coulomb_path`]):

@@ -85,6 +85,48 @@ pub struct Outputs {
 }
 
 impl Outputs {
+    /// The outputs of a contact without load (lift-off): no force, moment or heat, every
+    /// bristle elastic at the bulk temperature `t_bulk` (degC), no patch. Every output is
+    /// written out, so a new one needs its value here.
+    pub fn unloaded(t_bulk: f64) -> Outputs {
+        Outputs {
+            fx: 0.0,
+            fy: 0.0,
+            mz: 0.0,
+            f: 0.0,
+            t_max: t_bulk,
+            t_mean: t_bulk,
+            p_fric: 0.0,
+            frac_elastic: 1.0,
+            frac_plastic: 0.0,
+            frac_sliding: 0.0,
+            a: 0.0,
+            b: 0.0,
+            p0: 0.0,
+        }
+    }
+
+    /// The outputs of the mirror image x -> -x (rolling backwards): F_x, f and M_z change
+    /// sign, the others do not. Every output is written out, so a new one needs its parity
+    /// here. An involution.
+    pub fn mirrored(&self) -> Outputs {
+        Outputs {
+            fx: -self.fx,
+            fy: self.fy,
+            mz: -self.mz,
+            f: -self.f,
+            t_max: self.t_max,
+            t_mean: self.t_mean,
+            p_fric: self.p_fric,
+            frac_elastic: self.frac_elastic,
+            frac_plastic: self.frac_plastic,
+            frac_sliding: self.frac_sliding,
+            a: self.a,
+            b: self.b,
+            p0: self.p0,
+        }
+    }
+
     /// The outputs in the order of [`OUTPUTS`].
     pub fn to_array(&self) -> [f64; N_OUTPUTS] {
         std::array::from_fn(|k| (OUTPUTS[k].get)(self))
@@ -425,6 +467,33 @@ pub struct FieldPoint {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The mirror image changes the sign of F_x, f and M_z and of nothing else, and twice
+    /// is the identity; the unloaded outputs are zero but for the temperatures and the
+    /// elastic fraction.
+    #[test]
+    fn mirrored_flips_fx_f_mz_and_unloaded_holds_only_temperature_and_adhesion() {
+        let mut o = Outputs::default();
+        for (k, s) in OUTPUTS.iter().enumerate() {
+            (s.set)(&mut o, 1.0 + k as f64);
+        }
+        let m = o.mirrored();
+        for s in OUTPUTS {
+            let odd = matches!(s.name, "Fx" | "f" | "Mz");
+            let want = if odd { -(s.get)(&o) } else { (s.get)(&o) };
+            assert_eq!((s.get)(&m), want, "{}", s.name);
+        }
+        assert_eq!(m.mirrored(), o);
+        let u = Outputs::unloaded(35.0);
+        for s in OUTPUTS {
+            let want = match s.name {
+                "T_max" | "T_mean" => 35.0,
+                "frac_elastic" => 1.0,
+                _ => 0.0,
+            };
+            assert_eq!((s.get)(&u), want, "{}", s.name);
+        }
+    }
 
     #[test]
     fn every_input_has_one_row_that_reads_its_own_field() {

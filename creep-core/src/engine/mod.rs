@@ -25,6 +25,7 @@
 //! kernel [`crate::thermal`], the Hertz patch [`crate::hertz`].
 
 mod advance;
+mod fastpath;
 mod grid;
 pub mod io;
 mod modifiers;
@@ -33,6 +34,7 @@ mod strip;
 
 pub use crate::hertz::patch_for;
 pub use crate::material::layer_material;
+pub use fastpath::FastPath;
 pub use io::{FieldPoint, Inputs, Outputs, V_STANDSTILL};
 
 use crate::bristle::{BristleState, Regime};
@@ -219,10 +221,13 @@ pub struct Contact {
     reversed: bool,
     /// The configuration's formula and Rust effects at the current operating point.
     modifiers: modifiers::Modifiers,
-    /// True if moves with heat flow take the scalar temperature solve of `softening`: a
-    /// layer that only softens as it heats, the same-characteristic rule, no modifier of the
-    /// local bristle state.
+    /// True if moves with heat flow take the scalar temperature solve of `softening`
+    /// ([`FastPath::Softening`]: a layer that only softens as it heats, the
+    /// same-characteristic rule, no modifier of the local bristle state).
     softening_fast: bool,
+    /// The other fast paths this contact takes ([`FastPath::Coulomb`], [`FastPath::FixedLe`];
+    /// module `fastpath` states what each supports).
+    fast: fastpath::Taken,
 }
 
 impl Contact {
@@ -294,13 +299,16 @@ impl Contact {
             pool: None,
             modifiers: modifiers::Modifiers::new(&cfg.modifiers),
             softening_fast: false,
+            fast: fastpath::Taken::default(),
             t_tol: {
                 let r = Resolved::from_config(cfg);
                 let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
                 thermal::temperature_tolerance(cmax)
             },
         };
-        c.set_softening_solve(true);
+        for path in FastPath::ALL {
+            c.set_fast_path(path, true);
+        }
         Ok(c)
     }
 
@@ -506,12 +514,7 @@ impl Contact {
             *a = [0.0; N_KERNEL];
         }
         self.reset_nodes();
-        self.out = Outputs {
-            t_max: self.inputs.t_bulk,
-            t_mean: self.inputs.t_bulk,
-            frac_elastic: 1.0,
-            ..Outputs::default()
-        };
+        self.out = Outputs::unloaded(self.inputs.t_bulk);
         self.out
     }
 
@@ -665,13 +668,36 @@ impl Contact {
     /// the general solve). For tests that compare both; returns whether it applied before.
     #[doc(hidden)]
     pub fn set_softening_solve(&mut self, on: bool) -> bool {
-        let was = self.softening_fast;
-        let r = &self.r;
-        self.softening_fast = on
-            && r.monotone_softening()
-            && r.rule == crate::bristle::Rule::SameCharacteristic
-            && !self.modifiers.any_local();
+        self.set_fast_path(FastPath::Softening, on)
+    }
+
+    /// Switches a fast path on (taken if the configuration lies within what it supports,
+    /// module `fastpath`) or off (the general path). For tests that compare both; returns
+    /// whether it applied before.
+    #[doc(hidden)]
+    pub fn set_fast_path(&mut self, path: FastPath, on: bool) -> bool {
+        let was = self.fast_path(path);
+        let admits = path.support().admits(
+            self.cfg.effects,
+            &self.r,
+            self.has_modifiers(),
+            self.modifiers.any_local(),
+        );
+        let take = on && admits;
+        match path {
+            FastPath::Softening => self.softening_fast = take,
+            _ => self.fast.set(path, take),
+        }
         was
+    }
+
+    /// True if the contact takes the fast path `path`.
+    #[doc(hidden)]
+    pub fn fast_path(&self, path: FastPath) -> bool {
+        match path {
+            FastPath::Softening => self.softening_fast,
+            _ => self.fast.get(path),
+        }
     }
 
     /// Chooses how a step advances the bristles (default [`Scheme::CellsMarch`]).
@@ -713,17 +739,12 @@ pub(crate) fn mirror_inputs(i: &Inputs, on: bool) -> Inputs {
     }
 }
 
-/// Outputs of the mirror image x -> -x (`on`): F_x, f and M_z change sign. An involution.
+/// Outputs of the mirror image x -> -x (`on`, [`Outputs::mirrored`]). An involution.
 fn mirror_outputs(o: Outputs, on: bool) -> Outputs {
     if !on {
         return o;
     }
-    Outputs {
-        fx: -o.fx,
-        f: -o.f,
-        mz: -o.mz,
-        ..o
-    }
+    o.mirrored()
 }
 
 #[cfg(test)]

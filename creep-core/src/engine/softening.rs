@@ -2,8 +2,8 @@
 //!
 //! The general move ([`Contact::update_bristle`]) solves T = t_hist + self_c q(T) by
 //! evaluating the whole bristle law at trial temperatures, 2.5-2.8 times per move. Where
-//! the layer only softens as it heats ([`crate::material::Resolved::monotone_softening`]:
-//! every preset with temperature) and the move's branch of the law cannot change on the way
+//! the layer only softens as it heats ([`crate::engine::FastPath::Softening`] with
+//! [`crate::material::Resolved::monotone_softening`]: every preset with temperature) and the move's branch of the law cannot change on the way
 //! up ([`SofteningPath`]: elastic below tau_c1, hardening while loading, sliding at
 //! tau_c2), the law is a scalar function of T with an analytic derivative: Newton's method
 //! on it needs about one exponential per move, and the new state follows from the root.

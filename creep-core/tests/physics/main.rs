@@ -5,6 +5,7 @@
 mod common;
 
 mod bounded_work;
+mod fast_paths;
 mod fastsim_limit;
 mod grid_convergence;
 mod heat;

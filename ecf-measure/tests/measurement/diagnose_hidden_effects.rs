@@ -1,42 +1,24 @@
 //! The measurement loop on files with a known hidden effect: diagnose names it, adding it brings the error to the noise level; with no hidden effect nothing is claimed.
 use crate::common::*;
+use crate::curves::{curves_file, noise, Curves};
 use creep_core::{Config, Effect, Geometry, Inputs, Model};
 use ecf_measure::diagnose::diagnose;
 use ecf_measure::fit::{default_free, fit};
 use ecf_measure::measure::{Dataset, Defaults};
 
-fn noise(seed: &mut u64, sd: f64) -> f64 {
-    let mut s = 0.0;
-    for _ in 0..4 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        s += ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
-    }
-    s * sd * 3.0f64.sqrt()
-}
-
 /// Steady curves of `truth` at the given (speed, load) points, 12 creepages each, with noise.
 fn steady_file(truth: &Config, points: &[(f64, f64)], sd: f64) -> Dataset {
-    let mut csv = String::from("cx,f,series,v_mps,fn_kN\n");
     let mut seed = 11;
-    for &(v, fn_kn) in points {
-        let mut m = Model::new(truth).unwrap();
-        for i in 0..12 {
-            let cx = 0.0015 * 1.55f64.powi(i);
-            let f =
-                m.steady(&Inputs {
-                    cx,
-                    v,
-                    fn_n: fn_kn * 1e3,
-                    ..Inputs::default()
-                })
-                .unwrap()
-                .f + noise(&mut seed, sd);
-            csv.push_str(&format!("{cx},{f},v{v}_F{fn_kn},{v},{fn_kn}\n"));
-        }
-    }
-    Dataset::from_csv_str(&csv, "synthetic.csv", &Defaults::default()).unwrap()
+    let c = Curves {
+        points,
+        n: 12,
+        cx0: 0.0015,
+        ratio: 1.55,
+        repeat: 1,
+        series: |v, fkn| format!("v{v}_F{fkn}"),
+        name: "synthetic.csv",
+    };
+    curves_file(truth, &c, || noise(&mut seed, sd))
 }
 
 fn coarse(name: &str) -> Config {
@@ -45,6 +27,12 @@ fn coarse(name: &str) -> Config {
 
 fn noise_cv(data: &Dataset, sd: f64) -> f64 {
     100.0 * sd / (data.rows.iter().map(|r| r.f).sum::<f64>() / data.rows.len() as f64)
+}
+
+/// Asserts that a CV(RMSE) (%) is within 1.5 times the noise of `sd` on `data`.
+fn assert_at_noise(what: &str, cv: f64, data: &Dataset, sd: f64) {
+    let noise = noise_cv(data, sd);
+    assert!(cv < 1.5 * noise, "{what}: {cv} % vs noise {noise} %");
 }
 
 #[test]
@@ -84,12 +72,7 @@ fn hidden_temperature_is_found_and_fixes_the_error() {
     let mut fixed = cfg.clone();
     fixed.effects.insert(Effect::Temperature);
     let r = fit(&fixed, &data, &default_free(&fixed), 2, &|_| {}).unwrap();
-    assert!(
-        r.cv_rmse_pct_after < 1.5 * noise_cv(&data, sd),
-        "after {} % vs noise {} %",
-        r.cv_rmse_pct_after,
-        noise_cv(&data, sd)
-    );
+    assert_at_noise("after", r.cv_rmse_pct_after, &data, sd);
 }
 
 #[test]
@@ -132,12 +115,7 @@ fn hidden_pressure_dependence_is_found_with_several_loads() {
         creep_core::params::P::Tc2P,
     ];
     let r = fit(&fixed, &data, &free, 2, &|_| {}).unwrap();
-    assert!(
-        r.cv_rmse_pct_after < 1.5 * noise_cv(&data, sd),
-        "after {} % vs noise {} %",
-        r.cv_rmse_pct_after,
-        noise_cv(&data, sd)
-    );
+    assert_at_noise("after", r.cv_rmse_pct_after, &data, sd);
 }
 
 #[test]
@@ -220,12 +198,7 @@ fn hidden_transient_response_is_found_in_time_series() {
     fixed.effects.insert(Effect::Transient);
     let p = ecf_measure::evaluate::predict(&fixed, &data, 2).unwrap();
     let cmp = ecf_measure::evaluate::compare(&data, &p);
-    assert!(
-        cmp.cv_rmse_pct < 1.5 * noise_cv(&data, sd),
-        "{} % vs noise {} %",
-        cmp.cv_rmse_pct,
-        noise_cv(&data, sd)
-    );
+    assert_at_noise("with it", cmp.cv_rmse_pct, &data, sd);
 }
 
 #[test]
@@ -276,19 +249,18 @@ fn hidden_effect_of_an_extra_column_is_found_by_residuals_and_a_formula_fixes_it
         .iter()
         .find(|c| c.effect.starts_with("formula:") && c.effect.contains("humidity"))
         .expect("a formula candidate on humidity");
-    assert!(
-        formula.fitted_cv_rmse_pct < 1.5 * noise_cv(&data, sd),
-        "{formula:?}"
+    assert_at_noise(
+        &format!("{formula:?}"),
+        formula.fitted_cv_rmse_pct,
+        &data,
+        sd,
     );
     let rust = d
         .candidates
         .iter()
         .find(|c| c.effect == "Rust effect humidity_softening")
         .expect("the registered Rust effect is tried");
-    assert!(
-        rust.fitted_cv_rmse_pct < 1.5 * noise_cv(&data, sd),
-        "{rust:?}"
-    );
+    assert_at_noise(&format!("{rust:?}"), rust.fitted_cv_rmse_pct, &data, sd);
     // the user writes the formula and fits its parameter from a wrong start: noise level
     let user = Config::from_json_str(
         &truth_json.replace("\"value\": 0.3", "\"value\": 0.0"),
@@ -297,11 +269,7 @@ fn hidden_effect_of_an_extra_column_is_found_by_residuals_and_a_formula_fixes_it
     .unwrap();
     let free = vec![ecf_measure::fit::FreeParam::resolve(&user, "humid.k").unwrap()];
     let r = ecf_measure::fit::fit_params(&user, &data, &free, 2, &|_| {}).unwrap();
-    assert!(
-        r.cv_rmse_pct_after < 1.5 * noise_cv(&data, sd),
-        "after {} %",
-        r.cv_rmse_pct_after
-    );
+    assert_at_noise("after", r.cv_rmse_pct_after, &data, sd);
     assert!(
         (r.params[0].value - 0.3).abs() < 4.0 * r.params[0].stderr + 0.02,
         "k = {} ± {}",

@@ -1,25 +1,15 @@
 //! Verdicts that know the noise (issue 26, item 2): the best model is said to be at the noise level when nothing is missing, and N times above it when an effect outside the catalogue is.
 use crate::common::{preset, with_grid};
+use crate::curves::{noise, steady_curves};
 use creep_core::Config;
 use ecf_measure::diagnose::diagnose;
 use ecf_measure::measure::Dataset;
-
-fn noise(seed: &mut u64, sd: f64) -> f64 {
-    let mut s = 0.0;
-    for _ in 0..4 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        s += ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
-    }
-    s * sd * 3.0f64.sqrt()
-}
 
 /// Curves of `truth` at 5, 10 and 20 m/s, 14 creepages each, noise of `sd`.
 fn file(truth: &Config, sd: f64) -> Dataset {
     let mut seed = 7;
     let n = move || noise(&mut seed, sd);
-    crate::curves::steady_curves(truth, &[5.0, 10.0, 20.0], 14, 0.0015, 1.45, "noise.csv", n)
+    steady_curves(truth, &[5.0, 10.0, 20.0], 14, 0.0015, 1.45, "noise.csv", n)
 }
 
 /// `cfg` with both strengths scaled by 1/(1 + k (v - 5)/15): a fall with speed no catalogue

@@ -1,46 +1,41 @@
 //! The search of formula-effect forms (issue 26, item 1): on files whose truth has an effect outside the catalogue it proposes the right variable and target and a configuration that fits; on files with nothing missing it proposes nothing.
 use crate::common::{preset, with_grid};
-use creep_core::{Config, Inputs, Model};
+use crate::curves::{curves_file, noise, Curves};
+use creep_core::Config;
 use ecf_measure::diagnose::diagnose;
 use ecf_measure::fit::{fit_params, FreeParam};
-use ecf_measure::measure::{Dataset, Defaults};
-
-fn noise(seed: &mut u64, sd: f64) -> f64 {
-    let mut s = 0.0;
-    for _ in 0..4 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        s += ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
-    }
-    s * sd * 3.0f64.sqrt()
-}
+use ecf_measure::measure::Dataset;
+use ecf_measure::search::Search;
 
 /// Curves of `truth` at the (speed m/s, load kN) points, `n` creepages each, noise of `sd`.
 fn file(truth: &Config, points: &[(f64, f64)], n: i32, sd: f64) -> Dataset {
-    let mut csv = String::from("cx,f,series,v_mps,fn_kN\n");
     let mut seed = 5;
-    let q = (0.25f64 / 0.0015).powf(1.0 / (n - 1) as f64);
-    for &(v, fkn) in points {
-        let mut m = Model::new(truth).unwrap();
-        for i in 0..n {
-            let cx = 0.0015 * q.powi(i);
-            let f = m
-                .steady(&Inputs {
-                    cx,
-                    v,
-                    fn_n: fkn * 1e3,
-                    ..Inputs::default()
-                })
-                .unwrap()
-                .f;
-            csv.push_str(&format!(
-                "{cx},{},v{v}F{fkn},{v},{fkn}\n",
-                f + noise(&mut seed, sd)
-            ));
-        }
+    let c = Curves {
+        points,
+        n,
+        cx0: 0.0015,
+        ratio: (0.25f64 / 0.0015).powf(1.0 / (n - 1) as f64),
+        repeat: 1,
+        series: |v, fkn| format!("v{v}F{fkn}"),
+        name: "forms.csv",
+    };
+    curves_file(truth, &c, || noise(&mut seed, sd))
+}
+
+/// The six best forms of a search, on stderr.
+fn print_forms(s: &Search) {
+    for f in s.forms.iter().take(6) {
+        eprintln!(
+            "  {} x {}({}) held-out {:.2} % (screen {:.2} %), k = {:.4} ± {:.4}",
+            f.target,
+            f.shape,
+            f.variable,
+            f.heldout_cv_rmse_pct,
+            f.screen_cv_rmse_pct,
+            f.k,
+            f.k_stderr
+        );
     }
-    Dataset::from_csv_str(&csv, "forms.csv", &Defaults::default()).unwrap()
 }
 
 /// `cfg` with `target` scaled by `factor` (parameter k = `k`).
@@ -63,18 +58,7 @@ fn a_strength_falling_with_speed_is_found_and_the_proposal_fits() {
         .search
         .as_ref()
         .expect("not at the noise: the search runs");
-    for f in s.forms.iter().take(6) {
-        eprintln!(
-            "  {} x {}({}) held-out {:.2} % (screen {:.2} %), k = {:.4} ± {:.4}",
-            f.target,
-            f.shape,
-            f.variable,
-            f.heldout_cv_rmse_pct,
-            f.screen_cv_rmse_pct,
-            f.k,
-            f.k_stderr
-        );
-    }
+    print_forms(s);
     eprintln!("{} of {} forms in {:.1} s", s.tried, s.total, s.seconds);
     assert_eq!(s.tried, s.total);
     let p = s.proposed.as_ref().expect("a form is proposed");
@@ -122,18 +106,7 @@ fn a_layer_weakening_with_load_is_found_in_a_load_variable() {
     let d = diagnose(&cfg, &data, 2, &|_| {}).unwrap();
     eprintln!("{}", d.verdict);
     let s = d.search.as_ref().expect("the search runs");
-    for f in s.forms.iter().take(6) {
-        eprintln!(
-            "  {} x {}({}) held-out {:.2} % (screen {:.2} %), k = {:.4} ± {:.4}",
-            f.target,
-            f.shape,
-            f.variable,
-            f.heldout_cv_rmse_pct,
-            f.screen_cv_rmse_pct,
-            f.k,
-            f.k_stderr
-        );
-    }
+    print_forms(s);
     let p = s.proposed.as_ref().expect("a form is proposed");
     // the load and the maximum pressure (which grows with it) are the same variable here
     assert!(

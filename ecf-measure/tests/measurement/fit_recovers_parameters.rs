@@ -1,21 +1,10 @@
 //! Fitting (Eq. 5.1) recovers hidden parameters from synthetic measurements to the noise level, with honest standard errors.
 use crate::common::*;
+use crate::curves::noise;
 use creep_core::params::P;
 use ecf_measure::evaluate::{compare, predict};
 use ecf_measure::fit::fit;
 use ecf_measure::measure::{Dataset, Defaults};
-
-/// Deterministic Gaussian-ish noise (sum of 4 uniforms from an LCG), standard deviation `sd`.
-fn noise(seed: &mut u64, sd: f64) -> f64 {
-    let mut s = 0.0;
-    for _ in 0..4 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        s += ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
-    }
-    s * sd * 3.0f64.sqrt()
-}
 
 fn synthetic(truth: &creep_core::Config, sd: f64) -> Dataset {
     let mut csv = String::from("cx,f,series,v_mps,fn_kN\n");

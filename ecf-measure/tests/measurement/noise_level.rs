@@ -1,20 +1,9 @@
 //! The noise level estimated from the data alone (issue 26, item 2): from repeated operating points, and from a local cubic along each curve, on files made with known noise.
 use crate::common::{preset, with_grid};
-use creep_core::{Config, Inputs, Model};
+use crate::curves::{curves_file, noise, Curves};
+use creep_core::Config;
 use ecf_measure::measure::{Dataset, Defaults};
 use ecf_measure::noise::estimate;
-
-/// Approximately normal noise of standard deviation `sd` (sum of four uniforms).
-fn noise(seed: &mut u64, sd: f64) -> f64 {
-    let mut s = 0.0;
-    for _ in 0..4 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        s += ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
-    }
-    s * sd * 3.0f64.sqrt()
-}
 
 /// Curves of `truth` at 5, 10, 20 m/s, 12 creepages each (each `repeat` times), with noise.
 fn file(truth: &Config, sd: f64, repeat: usize, seed: u64) -> Dataset {
@@ -24,27 +13,17 @@ fn file(truth: &Config, sd: f64, repeat: usize, seed: u64) -> Dataset {
 /// Curves of `truth` at 5, 10, 20 m/s, `n` creepages from 0.15 % in ratios `q` (each `repeat`
 /// times), with noise.
 fn file_n(truth: &Config, sd: f64, repeat: usize, seed: u64, n: i32, q: f64) -> Dataset {
-    let mut csv = String::from("cx,f,series,v_mps,fn_kN\n");
     let mut seed = seed;
-    for v in [5.0, 10.0, 20.0] {
-        let mut m = Model::new(truth).unwrap();
-        for i in 0..n {
-            let cx = 0.0015 * q.powi(i);
-            let f = m
-                .steady(&Inputs {
-                    cx,
-                    v,
-                    fn_n: 110e3,
-                    ..Inputs::default()
-                })
-                .unwrap()
-                .f;
-            for _ in 0..repeat {
-                csv.push_str(&format!("{cx},{},v{v},{v},110\n", f + noise(&mut seed, sd)));
-            }
-        }
-    }
-    Dataset::from_csv_str(&csv, "noisy.csv", &Defaults::default()).unwrap()
+    let c = Curves {
+        points: &[(5.0, 110.0), (10.0, 110.0), (20.0, 110.0)],
+        n,
+        cx0: 0.0015,
+        ratio: q,
+        repeat,
+        series: |v, _| format!("v{v}"),
+        name: "noisy.csv",
+    };
+    curves_file(truth, &c, || noise(&mut seed, sd))
 }
 
 #[test]

@@ -1,0 +1,313 @@
+//! The instance's unit tests: threads and state restore, call rules and messages, parameters read back, geometry.
+
+use super::*;
+use creep_core::effects::Effect;
+use creep_core::engine::Scheme;
+use creep_core::params::P;
+use creep_core::Geometry;
+
+fn vr(name: &str) -> u32 {
+    vars::table()
+        .iter()
+        .find(|v| v.name == name)
+        .map(|v| v.vr)
+        .expect(name)
+}
+
+fn initialized() -> Instance {
+    let mut i = Instance::new("t", None, false);
+    assert_eq!(i.set_integer(vr("nx"), 10), Status::Ok);
+    assert_eq!(i.set_integer(vr("ny"), 5), Status::Ok);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Ok);
+    i
+}
+
+#[test]
+fn threads_give_the_same_steps_and_survive_a_state_restore() {
+    let run = |threads: i32| {
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.set_integer(vr("nx"), 20), Status::Ok);
+        assert_eq!(i.set_integer(vr("ny"), 9), Status::Ok);
+        assert_eq!(i.set_integer(vr("threads"), threads), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        assert_eq!(i.get_integer(vr("threads")), Ok(threads));
+        let mut fx = Vec::new();
+        let mut saved = None;
+        for k in 0..20 {
+            assert_eq!(i.set_real(vr("cx"), 0.002 + 0.01 * k as f64), Status::Ok);
+            assert_eq!(i.do_step(k as f64 * 1e-4, 1e-4), Status::Ok);
+            fx.push(i.get_real(vr("Fx")).expect("Fx"));
+            if k == 10 {
+                saved = Some(i.get_state());
+            }
+        }
+        assert_eq!(i.set_state(saved.as_ref().expect("state")), Status::Ok);
+        assert_eq!(i.get_integer(vr("threads")), Ok(threads));
+        assert_eq!(i.set_real(vr("cx"), 0.002 + 0.01 * 11.0), Status::Ok);
+        assert_eq!(i.do_step(11e-4, 1e-4), Status::Ok);
+        fx.push(i.get_real(vr("Fx")).expect("Fx"));
+        fx
+    };
+    let one = run(1);
+    assert_eq!(one[11], one[20], "a restored state repeats its step");
+    assert_eq!(one, run(3));
+    // the continuous scheme: close to the reference, not equal to it
+    let mut i = Instance::new("t", None, false);
+    for (n, x) in [("nx", 20), ("ny", 9), ("scheme", 1)] {
+        assert_eq!(i.set_integer(vr(n), x), Status::Ok);
+    }
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Ok);
+    assert_eq!(i.get_integer(vr("scheme")), Ok(1));
+    let mut cont = Vec::new();
+    for k in 0..20 {
+        assert_eq!(i.set_real(vr("cx"), 0.002 + 0.01 * k as f64), Status::Ok);
+        assert_eq!(i.do_step(k as f64 * 1e-4, 1e-4), Status::Ok);
+        cont.push(i.get_real(vr("Fx")).expect("Fx"));
+    }
+    assert_ne!(cont[..20], one[..20]);
+    for (c, r) in cont.iter().zip(&one) {
+        assert!((c - r).abs() <= 0.02 * r.abs(), "{c} vs {r}");
+    }
+    // out of range
+    let mut i = Instance::new("t", None, false);
+    assert_eq!(i.set_integer(vr("threads"), 0), Status::Error);
+    assert_eq!(i.set_integer(vr("threads"), 65), Status::Error);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.get_integer(vr("threads")), Ok(1));
+}
+
+#[test]
+fn wrong_state_and_unknown_reference_are_errors_with_messages() {
+    let mut i = Instance::new("t", None, false);
+    assert_eq!(i.do_step(0.0, 1e-3), Status::Error);
+    assert_eq!(i.set_real(9999, 1.0), Status::Error);
+    let logs = i.take_logs();
+    assert!(
+        logs[0].text.contains("fmi2DoStep") && logs[0].text.contains("Instantiated"),
+        "{logs:?}"
+    );
+    assert!(logs[1].text.contains("9999"), "{logs:?}");
+    let mut i = initialized();
+    assert_eq!(i.set_real(vr("mu"), 0.3), Status::Error);
+    let logs = i.take_logs();
+    assert!(
+        logs[0].text.contains("mu") && logs[0].text.contains("fixed parameter"),
+        "{logs:?}"
+    );
+}
+
+#[test]
+fn nan_input_is_rejected_and_value_kept() {
+    let mut i = initialized();
+    assert_eq!(i.set_real(vr("cx"), 0.01), Status::Ok);
+    assert_eq!(i.set_real(vr("cx"), f64::NAN), Status::Error);
+    assert_eq!(i.get_real(vr("cx")), Ok(0.01));
+    let logs = i.take_logs();
+    assert!(
+        logs[0].text.contains("cx") && logs[0].text.contains("finite"),
+        "{logs:?}"
+    );
+    assert_eq!(i.set_real(vr("FN"), -1.0), Status::Warning);
+    assert_eq!(i.do_step(0.0, 1e-4), Status::Ok);
+    assert_eq!(i.get_real(vr("Fx")), Ok(0.0));
+}
+
+#[test]
+fn preset_and_model_conflict_is_reported_at_initialization() {
+    let mut i = Instance::new("t", None, false);
+    assert_eq!(i.set_string(vr("model"), "fastsim"), Status::Ok);
+    assert_eq!(i.set_string(vr("preset"), "dry"), Status::Ok);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Error);
+    let logs = i.take_logs();
+    assert!(
+        logs[0].text.contains("fastsim") && logs[0].text.contains("dry"),
+        "{logs:?}"
+    );
+    // still in initialization mode (a corrected parameter and another exit may follow),
+    // but no FMU state is handed out until an exit succeeds or fmi2Reset
+    assert_eq!(i.phase(), Phase::Initialization);
+    assert!(i.try_get_state().is_err());
+    assert_eq!(i.reset(), Status::Ok);
+    assert!(i.try_get_state().is_ok());
+}
+
+#[test]
+fn parameters_read_back_from_the_preset_unless_set() {
+    let mut i = Instance::new("t", None, false);
+    assert_eq!(i.set_string(vr("preset"), "dry"), Status::Ok);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    let dry = Config::preset("dry").unwrap();
+    assert_eq!(i.get_real(vr("tau_c1_0_GPa")), Ok(dry.params.get(P::Tc10)));
+    assert_eq!(i.set_real(vr("tau_c1_0_GPa"), 0.4), Status::Ok);
+    assert_eq!(i.get_real(vr("tau_c1_0_GPa")), Ok(0.4));
+    assert_eq!(i.set_boolean(vr("effect_transient"), false), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Ok);
+    let c = i.model().unwrap().config();
+    assert_eq!(c.params.get(P::Tc10), 0.4);
+    assert!(!c.effects.has(Effect::Transient));
+    assert_eq!(c.params.get(P::Tc20), dry.params.get(P::Tc20));
+}
+
+#[test]
+fn curvature_geometry_gives_hertz_semi_axes() {
+    let mut i = Instance::new("t", None, false);
+    assert_eq!(i.set_integer(vr("geometry"), 2), Status::Ok);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Ok);
+    let a = i.get_real(vr("a")).unwrap();
+    let b = i.get_real(vr("b")).unwrap();
+    let expect = creep_core::engine::patch_for(i.model().unwrap().config(), 110e3).unwrap();
+    assert!(matches!(
+        i.model().unwrap().config().geometry,
+        Geometry::Curvatures { .. }
+    ));
+    assert_eq!((a, b), (expect.a, expect.b));
+    assert!(
+        a > 1e-3 && a < 2e-2 && b > 1e-3 && b < 2e-2,
+        "a = {a}, b = {b}"
+    );
+}
+
+/// An instance with rel_tol, the speed v and the integer settings given, initialized;
+/// returns it with its exit_initialization status and logs.
+fn with_tol(rel_tol: f64, v: f64, ints: &[(&str, i32)]) -> (Instance, Status, Vec<LogMsg>) {
+    let mut i = Instance::new("t", None, true);
+    assert_eq!(i.set_real(vr("rel_tol"), rel_tol), Status::Ok);
+    assert_eq!(i.set_real(vr("v"), v), Status::Ok);
+    for (n, x) in ints {
+        assert_eq!(i.set_integer(vr(n), *x), Status::Ok);
+    }
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    let st = i.exit_initialization();
+    let logs = i.take_logs();
+    (i, st, logs)
+}
+
+#[test]
+fn rel_tol_runs_on_the_grid_and_scheme_the_table_gives_and_logs_them() {
+    use creep_core::tolerance::{self, Filter};
+    for (tol, v) in [(0.05, 5.0), (0.02, 30.0), (0.01, 5.0)] {
+        let c = tolerance::choose(tol, v, None, Filter::default()).expect("choice");
+        assert!(c.met, "{tol} at {v}: the test wants a met tolerance");
+        let (mut i, st, logs) = with_tol(tol, v, &[]);
+        assert_eq!(st, Status::Ok, "{logs:?}");
+        assert_eq!(i.get_integer(vr("nx")), Ok(c.nx as i32));
+        assert_eq!(i.get_integer(vr("ny")), Ok(c.ny as i32));
+        let code = i32::from(c.scheme == Scheme::Continuous);
+        assert_eq!(i.get_integer(vr("scheme")), Ok(code));
+        assert_eq!(i.get_real(vr("rel_tol")), Ok(tol));
+        let m = i.model().expect("model");
+        assert_eq!(m.config().grid.nx, c.nx);
+        let grid = format!("grid {}x{}", c.nx, c.ny);
+        assert!(
+            logs.iter().any(|l| l.category == "logEvents"
+                && l.text.contains(&grid)
+                && l.text.contains(&format!("{:.2} %", c.fx_err_pct))),
+            "{logs:?}"
+        );
+        // the chosen scheme is the one that steps: the same Fx as the explicit settings
+        let mut j = Instance::new("t", None, false);
+        assert_eq!(j.set_real(vr("v"), v), Status::Ok);
+        for (n, x) in [("nx", c.nx as i32), ("ny", c.ny as i32), ("scheme", code)] {
+            assert_eq!(j.set_integer(vr(n), x), Status::Ok);
+        }
+        assert_eq!(j.enter_initialization(), Status::Ok);
+        assert_eq!(j.exit_initialization(), Status::Ok);
+        for inst in [&mut i, &mut j] {
+            assert_eq!(inst.set_real(vr("cx"), 0.05), Status::Ok);
+            assert_eq!(inst.do_step(0.0, 2.5e-4), Status::Ok);
+        }
+        assert_eq!(i.get_real(vr("Fx")), j.get_real(vr("Fx")));
+    }
+}
+
+#[test]
+fn rel_tol_off_and_explicit_settings_keep_the_grid() {
+    let preset = default_grid();
+    // off: the preset's grid
+    let (mut i, st, _) = with_tol(0.0, 5.0, &[]);
+    assert_eq!(st, Status::Ok);
+    assert_eq!(i.get_integer(vr("nx")), Ok(preset.0));
+    assert_eq!(i.get_integer(vr("scheme")), Ok(0));
+    // explicit nx, ny override a loose tolerance that would choose another grid
+    let loose = creep_core::tolerance::choose(0.5, 5.0, None, Default::default()).expect("c");
+    assert_ne!((loose.nx, loose.ny), (80, 21));
+    let (mut i, st, logs) = with_tol(0.5, 5.0, &[("nx", 80), ("ny", 21)]);
+    assert_eq!(st, Status::Ok, "{logs:?}");
+    assert_eq!(i.get_integer(vr("nx")), Ok(80));
+    assert_eq!(i.get_integer(vr("ny")), Ok(21));
+    // an explicit grid the table does not have: used, with a warning
+    let (mut i, st, logs) = with_tol(0.01, 5.0, &[("nx", 30), ("ny", 7)]);
+    assert_eq!(st, Status::Warning, "{logs:?}");
+    assert_eq!(i.get_integer(vr("nx")), Ok(30));
+    assert!(logs.iter().any(|l| l.text.contains("nx = 30")), "{logs:?}");
+}
+
+fn default_grid() -> (i32, i32) {
+    let g = vars::default_config().grid;
+    (g.nx as i32, g.ny as i32)
+}
+
+#[test]
+fn a_rel_tol_no_grid_meets_warns_with_the_error_reached() {
+    let (mut i, st, logs) = with_tol(1e-5, 20.0, &[]);
+    assert_eq!(st, Status::Warning, "{logs:?}");
+    let c = creep_core::tolerance::choose(1e-5, 20.0, None, Default::default()).expect("c");
+    assert_eq!(i.get_integer(vr("nx")), Ok(c.nx as i32));
+    assert!(
+        logs.iter()
+            .any(|l| l.category == "logStatusWarning" && l.text.contains("NOT met")),
+        "{logs:?}"
+    );
+}
+
+#[test]
+fn rel_tol_follows_v_set_during_initialization_not_after() {
+    use creep_core::tolerance::choose;
+    let (at5, at30) = (
+        choose(0.02, 5.0, None, Default::default()).expect("c"),
+        choose(0.02, 30.0, None, Default::default()).expect("c"),
+    );
+    assert_ne!(
+        (at5.nx, at5.ny),
+        (at30.nx, at30.ny),
+        "the test needs two grids"
+    );
+    let mut i = Instance::new("t", None, false);
+    assert_eq!(i.set_real(vr("rel_tol"), 0.02), Status::Ok);
+    assert_eq!(i.set_real(vr("v"), 5.0), Status::Ok);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.get_integer(vr("nx")), Ok(at5.nx as i32));
+    assert_eq!(i.set_real(vr("v"), 30.0), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Ok);
+    assert_eq!(i.get_integer(vr("nx")), Ok(at30.nx as i32));
+    assert_eq!(i.set_real(vr("v"), 5.0), Status::Ok);
+    assert_eq!(i.do_step(0.0, 1e-3), Status::Ok);
+    assert_eq!(i.get_integer(vr("nx")), Ok(at30.nx as i32));
+}
+
+#[test]
+fn bad_rel_tol_is_refused_with_a_message_and_the_value_kept() {
+    for bad in [-0.01, f64::NAN, f64::INFINITY, 1.5] {
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(i.set_real(vr("rel_tol"), bad), Status::Error, "{bad}");
+        let logs = i.take_logs();
+        assert!(
+            logs.iter().any(|l| l.text.contains("rel_tol")),
+            "{bad}: {logs:?}"
+        );
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.get_real(vr("rel_tol")), Ok(0.0));
+    }
+    // fastsim: ignored with a warning
+    let mut i = Instance::new("t", None, true);
+    assert_eq!(i.set_real(vr("rel_tol"), 0.01), Status::Ok);
+    assert_eq!(i.set_string(vr("preset"), "fastsim"), Status::Ok);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Warning);
+    assert!(i.take_logs().iter().any(|l| l.text.contains("ECF model")));
+}
