@@ -25,6 +25,7 @@
 //! kernel [`crate::thermal`], the Hertz patch [`crate::hertz`].
 
 mod advance;
+mod bristle_move;
 mod fastpath;
 mod grid;
 pub mod io;

@@ -1,0 +1,275 @@
+//! One bristle's move over a sub-step: the bristle law (Sec. 4.1) under the local temperature solve (Eq. 4.35), and where an adhering bristle yields (the cold crossing, docs/model.md section 9 step 5).
+
+use super::advance::{weighted_stress, Kin};
+use super::Contact;
+use crate::bristle::{self, BristleState};
+use crate::material::NodeP;
+use crate::thermal::{self, StepFactors, N_KERNEL};
+
+/// The state between two trial states `a` and `b` of a temperature solve, at weight `w`;
+/// only within one regime (no kink between the ends).
+fn lerp(a: &BristleState, b: &BristleState, w: f64) -> Option<BristleState> {
+    (a.regime == b.regime).then(|| BristleState {
+        tau: [
+            a.tau[0] + w * (b.tau[0] - a.tau[0]),
+            a.tau[1] + w * (b.tau[1] - a.tau[1]),
+        ],
+        sh: a.sh + w * (b.sh - a.sh),
+        ..*a
+    })
+}
+
+impl Contact {
+    /// Advances one bristle by one sub-step; returns its heat density q (W/m^2, both bodies).
+    #[inline]
+    pub(super) fn update_bristle<const W: bool>(
+        &self,
+        k: &Kin,
+        np: &NodeP,
+        [x, y]: [f64; 2],
+        s: &mut BristleState,
+        acc: &mut [f64; N_KERNEL],
+        fac: &StepFactors,
+    ) -> f64 {
+        let du = k.rigid_slip([x, y]);
+        // acc[0] integrates all heat ever received (rate 0): zero means a cold history
+        let warm = acc[0] != 0.0;
+        let t_hist = self.t_hist(k, acc, fac);
+        // a layer that only softens as it heats: the scalar solve (module `softening`)
+        if self.softening_fast && k.heat {
+            if let Some(q) = self.update_softening::<W>(k, np, [x, y], du, t_hist, s, acc, fac) {
+                return q;
+            }
+        }
+        let self_c = k.self_c;
+        let old = *s;
+        // displacements and stresses are far from overflow: sqrt instead of hypot
+        let u_abs = (old.u[0] * old.u[0] + old.u[1] * old.u[1]).sqrt();
+        let slip = if k.h > 0.0 {
+            (du[0] * du[0] + du[1] * du[1]).sqrt() / k.h
+        } else {
+            0.0
+        };
+        let release_ref: std::cell::Cell<Option<[f64; 2]>> = std::cell::Cell::new(None);
+        let theta = self.release_weight(k, np, old.tau);
+        // flexibilities L + L_e and the elastic increment (Eq. 4.21) for the layer's L_e
+        let flex = |le: f64| k.flex(le, [x, y]);
+        // Without a temperature coefficient of L_e (every preset) and without formula
+        // effects, material_base gives L_e = the node's (divided by exactly 1): the same for
+        // every trial temperature, so this is computed once per move, not per evaluation.
+        let fixed = self.fast.fixed_le.then(|| flex(np.le));
+        // the law's material-independent parts of this move, shared by all evaluations
+        let mut mv = (self.r.rule == bristle::Rule::SameCharacteristic)
+            .then(|| bristle::Move::new(&old, du));
+        // A bristle elastic at the start of the move makes no heat until it crosses tau_c1:
+        // it crosses at the yield stress of its temperature while elastic, t_hist, and its
+        // heat flows only over the plastic remainder (1 - lambda) h of the move, so that its
+        // self-heating is 2 alpha C q sqrt(h) / sqrt(1 - lambda) for the move's mean heat
+        // density q (docs/model.md, section 9).
+        let mut m_hist = None;
+        let mut self_c = self_c;
+        if let Some(mv) = mv.as_mut() {
+            if self.r.temperature && k.heat && old.regime == bristle::Regime::Elastic {
+                let m = self.material(np, t_hist, u_abs, slip);
+                let dtau = match fixed {
+                    Some(f) => f.2,
+                    None => flex(m.le).2,
+                };
+                let tc1_of = |p: &NodeP| self.material(p, t_hist, u_abs, slip).tc1;
+                let tc1 = self.crossing_yield(k, np, [x, y], [old.tau, dtau], m.tc1, tc1_of);
+                let lam = mv.set_cold_yield(&old, dtau, tc1);
+                if lam > 0.0 && lam < 1.0 {
+                    self_c /= (1.0 - lam).sqrt();
+                }
+                m_hist = Some(m);
+            }
+        }
+        let mv = mv;
+        let eval = |t: f64| -> (BristleState, f64) {
+            let m = match m_hist {
+                Some(m) if t == t_hist => m,
+                _ => self.material(np, t, u_abs, slip),
+            };
+            let (lxe, lye, dtau) = match fixed {
+                Some(f) => f,
+                None => flex(m.le),
+            };
+            let mut ns = old;
+            match &mv {
+                Some(mv) => bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye]),
+                None => bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule),
+            }
+            let q = if k.heat {
+                let tr = match release_ref.get() {
+                    Some(r) => [
+                        r[0] + theta * (ns.tau[0] - r[0]),
+                        r[1] + theta * (ns.tau[1] - r[1]),
+                    ],
+                    None => {
+                        release_ref.set(Some(ns.tau));
+                        ns.tau
+                    }
+                };
+                let dux = du[0] - lxe * (tr[0] - old.tau[0]);
+                let duy = du[1] - lye * (tr[1] - old.tau[1]);
+                let tw = if W {
+                    weighted_stress(ns.tau, old.tau, k.w_old)
+                } else {
+                    ns.tau
+                };
+                (self.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0)
+            } else {
+                0.0
+            };
+            (ns, q)
+        };
+        // A sliding bristle that heated in its previous move starts the solve at the
+        // predictor; this is valid where the root is unique (a bristle sliding at tau_c2(T),
+        // whose heat falls with T) and the release is not damped; otherwise (or when a trial
+        // state is not sliding) the full solve from t_hist. Plastic bristles are left to the
+        // full solve: an elastic state at t_hist can be the smallest root there.
+        let sliding = |s: &BristleState| s.regime == bristle::Regime::Sliding;
+        let predicted =
+            if self.r.temperature && self_c > 0.0 && old.q > 0.0 && theta == 1.0 && sliding(&old) {
+                thermal::solve_from_predictor(
+                    t_hist, self_c, old.q, self.t_tol, eval, lerp, sliding,
+                )
+            } else {
+                None
+            };
+        let (mut ns, mut q) = match predicted {
+            Some(r) => r,
+            None => eval(t_hist),
+        };
+        if predicted.is_none() && self.r.temperature && q > 0.0 && self_c > 0.0 {
+            (ns, q) =
+                thermal::solve_self_heating(t_hist, self_c, q, ns, old.q, self.t_tol, eval, lerp);
+        }
+        ns.temp = if self.r.temperature {
+            t_hist + self_c * q
+        } else {
+            k.t_bulk
+        };
+        ns.q = q;
+        *s = ns;
+        if self.r.temperature && k.heat && (warm || q > 0.0) {
+            fac.accumulate(acc, q); // alpha is folded into alpha_c
+        }
+        q
+    }
+
+    /// The temperature of a bristle from its heat history (all but the newest interval,
+    /// Eq. 4.35), degC; the bulk temperature for a cold history or without heat.
+    #[inline]
+    fn t_hist(&self, k: &Kin, acc: &[f64; N_KERNEL], fac: &StepFactors) -> f64 {
+        if self.r.temperature && k.heat && acc[0] != 0.0 {
+            k.t_bulk + k.alpha_c * fac.history(acc)
+        } else {
+            k.t_bulk
+        }
+    }
+
+    /// The weight theta (0 < theta <= 1) of the move's own elastic-release heat. That heat
+    /// (the -L dtau part of Eq. 4.29), caused by the sub-step's own self-heating, feeds back
+    /// on the temperature with a gain of about self_c |tau|^2 (L_x + L_e) X_T / h, which grows
+    /// like 1/sqrt(h): below ~1 us the implicit solve would run away (the half-space kernel
+    /// has no heat capacity of the layer to stop it). theta = min(1, 0.8/gain): fully
+    /// implicit while the sub-step's temperature equation is a contraction with margin
+    /// (gain < 0.8), damped only for tiny sub-steps (docs/model.md, section 6).
+    #[inline]
+    fn release_weight(&self, k: &Kin, np: &NodeP, tau: [f64; 2]) -> f64 {
+        if !(k.heat && self.r.temperature) {
+            return 1.0;
+        }
+        let cmax = self.r.cmax_t();
+        let t0 = (tau[0] * tau[0] + tau[1] * tau[1]).sqrt().max(1.0);
+        let gain = k.self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * cmax / k.h;
+        if gain > 0.8 {
+            0.8 / gain
+        } else {
+            1.0
+        }
+    }
+
+    /// The yield stress tau_c1 (Pa) at which a bristle that is elastic at the start of a move
+    /// (stress `tau` at its start, elastic increment `dtau`; `tc1_end` the yield stress at the move's end
+    /// node `np`, `tc1_of` that at any point, both at the temperature the bristle has while
+    /// elastic) leaves the elastic branch. Where the
+    /// pressure, and with it tau_c1, rises along the move (towards the middle of the
+    /// contact), the crossing is found at its own position: near the leading edge the
+    /// pressure grows like the square root of the distance from the edge, so the end node's
+    /// tau_c1 overstates the yield stress at the crossing by O(sqrt(dx)), an error of order
+    /// 1/2 that the hardening and the heat of the bristle carry downstream (docs/model.md,
+    /// section 9). Elsewhere, or when the trial stays elastic, the end node's tau_c1.
+    fn crossing_yield(
+        &self,
+        k: &Kin,
+        np: &NodeP,
+        [x, y]: [f64; 2],
+        [tau, dtau]: [[f64; 2]; 2],
+        tc1_end: f64,
+        tc1_of: impl Fn(&NodeP) -> f64,
+    ) -> f64 {
+        let norm = |l: f64| {
+            let t = [tau[0] + l * dtau[0], tau[1] + l * dtau[1]];
+            (t[0] * t[0] + t[1] * t[1]).sqrt()
+        };
+        let t0 = norm(0.0);
+        if !(t0 < tc1_end && norm(1.0) > tc1_end) {
+            return tc1_end;
+        }
+        let (a, b) = (self.patch.a, self.patch.b);
+        let eta = if self.patch.line { 0.0 } else { y / b };
+        // the move runs from xi(0) to xi(1) = the end node; x is its midpoint
+        let xi = |l: f64| (x + k.dist * (0.5 - l)) / a;
+        let np0 = self.r.node_p(&self.patch, xi(0.0), eta);
+        if np0.p >= np.p {
+            return tc1_end;
+        }
+        let tc1_at = |l: f64| tc1_of(&self.r.node_p(&self.patch, xi(l), eta));
+        // g(l) = |tau(l)| - tc1(l): g(1) > 0; g(0) <= 0 for a bristle below its yield stress.
+        // Solved in r = sqrt(l): near the leading edge tc1 rises like sqrt(l), which is
+        // singular in l but linear in r, so the regula falsi converges at its usual rate.
+        let g = |r: f64| norm(r * r) - tc1_at(r * r);
+        let (mut ra, mut ga) = (0.0, t0 - tc1_at(0.0));
+        let (mut rb, mut gb) = (1.0, norm(1.0) - tc1_end);
+        if ga > 0.0 {
+            // already at or above the yield stress of its start position: it yields at once,
+            // at its own stress (the limit of a crossing at lambda -> 0, so the outputs stay
+            // continuous in the inputs)
+            return t0;
+        }
+        // Illinois regula falsi to a crossing within 1e-13 in r, with bisection steps when
+        // it stalls: the outputs must be smooth in the inputs to rounding (issue 25)
+        // (a bristle entering at the leading edge starts with g(0) = 0, no stress and no
+        // strength, and is below its yield stress just after: bisect until g(ra) < 0)
+        let mut side = 0;
+        for it in 0..100 {
+            let r = if it % 8 == 7 || ga == 0.0 {
+                0.5 * (ra + rb)
+            } else {
+                (ra * gb - rb * ga) / (gb - ga)
+            };
+            let gr = g(r);
+            if gr > 0.0 {
+                (rb, gb) = (r, gr);
+                if side == 1 {
+                    ga *= 0.5;
+                }
+                side = 1;
+            } else {
+                (ra, ga) = (r, gr);
+                if side == -1 {
+                    gb *= 0.5;
+                }
+                side = -1;
+            }
+            if rb - ra < 1e-13 {
+                break;
+            }
+        }
+        // the yield stress the stress path meets at the crossing
+        let r = 0.5 * (ra + rb);
+        norm(r * r)
+    }
+}
