@@ -14,6 +14,8 @@
 #       docs/img/accuracy/ and the tolerance table of docs/fmu.md)
 #   bash scripts/bench.sh --only consistency   drift of the steady state under transient steps at
 #       constant inputs, per preset, speed, grid and communication step (about 10 s)
+#   bash scripts/bench.sh --only steady-grid   each grid's largest error of the steady curves
+#       (c_x 0.2 ... 30 %) against 640x168, per preset and speed (about 10 s on an idle core)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p ecf-cli -p ecf-bench

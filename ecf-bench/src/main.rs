@@ -1,8 +1,9 @@
 //! `ecf-bench`: cost of the ECF engine against a plain C FASTSIM, transient real-time factors and `ecf diagnose`, measured interleaved in one process (medians).
 //!
-//! Usage: ecf-bench [--quick] [--only steady|transient|diagnose|threads|accuracy|consistency] [--finest 320|640]
+//! Usage: ecf-bench [--quick] [--only steady|transient|diagnose|threads|accuracy|consistency|steady-grid] [--finest 320|640]
 mod accuracy;
 mod consistency;
+mod steady_grid;
 
 use creep_core::engine::Scheme;
 use creep_core::{Config, Grid, Inputs, Model};
@@ -324,10 +325,11 @@ fn main() {
             "threads",
             "accuracy",
             "consistency",
+            "steady-grid",
         ]
         .contains(&o.as_str())
         {
-            eprintln!("ecf-bench: --only takes steady, transient, diagnose, threads, accuracy or consistency (got '{o}')");
+            eprintln!("ecf-bench: --only takes steady, transient, diagnose, threads, accuracy, consistency or steady-grid (got '{o}')");
             std::process::exit(2);
         }
     }
@@ -347,7 +349,7 @@ fn main() {
     let run = |w: &str| {
         only.as_deref().is_none_or(|o| o == w)
             && w != "threads"
-            && (!["accuracy", "consistency"].contains(&w) || quick || only.is_some())
+            && (!["accuracy", "consistency", "steady-grid"].contains(&w) || quick || only.is_some())
     };
     if run("steady") {
         steady_table(quick);
@@ -363,6 +365,9 @@ fn main() {
     }
     if run("consistency") {
         consistency::table(quick);
+    }
+    if run("steady-grid") {
+        steady_grid::table(quick);
     }
     // on request only: every other table runs pinned to one core
     if only.as_deref() == Some("threads") {
