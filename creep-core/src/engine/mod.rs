@@ -31,6 +31,7 @@ mod grid;
 pub mod io;
 mod modifiers;
 mod softening;
+mod steady_coulomb;
 mod strip;
 
 pub use crate::hertz::patch_for;
@@ -209,7 +210,7 @@ pub struct Contact {
     np_cache_p0: Vec<f64>,
     /// Coulomb bounds of the lattice nodes, strips side by side (FASTSIM's steady march),
     /// for the peak pressure in `bound_cache_p0`.
-    bound_cache: Vec<[f64; advance::LANES]>,
+    bound_cache: Vec<[f64; steady_coulomb::LANES]>,
     bound_cache_p0: f64,
     /// Kernel factors of recent sub-step lengths (h, factors), per strip.
     fac_cache: Vec<Vec<(f64, thermal::StepFactors)>>,
