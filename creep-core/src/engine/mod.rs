@@ -29,6 +29,7 @@ mod bristle_move;
 mod fastpath;
 mod grid;
 pub mod io;
+mod kin;
 mod modifiers;
 mod softening;
 mod steady_coulomb;

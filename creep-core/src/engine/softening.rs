@@ -14,7 +14,7 @@
 //! |u|, slip) take the general solve. Results agree with the general solve within its
 //! tolerance (1e-4 relative change of the softening factors; tested in `tests/physics`).
 
-use super::advance::Kin;
+use super::kin::Kin;
 use super::Contact;
 use crate::bristle::{BristleState, Material, Move, Regime, SofteningPath};
 use crate::material::{exp_fast, NodeP};
@@ -287,7 +287,7 @@ impl PathMove<'_> {
         let dux = du[0] - l[0] * (tau_r[0] - old.tau[0]);
         let duy = du[1] - l[1] * (tau_r[1] - old.tau[1]);
         let tw = if WEIGHTED {
-            super::advance::weighted_stress(tau, old.tau, self.k.w_old)
+            super::kin::weighted_stress(tau, old.tau, self.k.w_old)
         } else {
             tau
         };
