@@ -148,15 +148,16 @@ impl Contact {
             self.eta[j] * self.patch.b
         };
         let x_mid = a * (xi_end + 0.5 * kin.dist / a);
-        if self.r.temperature || self.has_modifiers() {
-            self.update_bristle::<W>(kin, np, [x_mid, y], s, acc, fac);
-        } else {
+        if self.fast.cold {
             self.update_bristle_cold::<W>(kin, np, [x_mid, y], s);
+        } else {
+            self.update_bristle::<W>(kin, np, [x_mid, y], s, acc, fac);
         }
     }
 
-    /// [`Self::update_bristle`] without temperature and modifiers (FASTSIM, isothermal ECF):
-    /// the same operations without the temperature solve and the heat kernel.
+    /// [`Self::update_bristle`] on the fast path [`super::FastPath::Cold`] (what it supports:
+    /// engine/fastpath.rs `COLD`; FASTSIM, isothermal ECF): the same operations without the
+    /// temperature solve and the heat kernel.
     #[inline]
     fn update_bristle_cold<const W: bool>(
         &self,

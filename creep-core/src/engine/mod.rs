@@ -228,7 +228,8 @@ pub struct Contact {
     /// ([`FastPath::Softening`]: a layer that only softens as it heats, the
     /// same-characteristic rule, no modifier of the local bristle state).
     softening_fast: bool,
-    /// The other fast paths this contact takes ([`FastPath::Coulomb`], [`FastPath::FixedLe`];
+    /// The other fast paths this contact takes ([`FastPath::Coulomb`], [`FastPath::FixedLe`],
+    /// [`FastPath::Cold`];
     /// module `fastpath` states what each supports).
     fast: fastpath::Taken,
 }
