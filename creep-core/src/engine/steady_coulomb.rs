@@ -9,6 +9,7 @@ pub(super) const LANES: usize = 4;
 
 /// What every strip's march shares: the grid, the creepages and the flexibilities of the
 /// step's inputs.
+#[derive(Clone, Copy)]
 struct CoulombMarch {
     nx: usize,
     /// Semi-axes a, b, m.
@@ -35,6 +36,7 @@ struct CoulombMarch {
 
 /// The per-strip constants of one group of [`LANES`] strips (padding lanes repeat the last
 /// strip).
+#[derive(Clone, Copy)]
 struct LaneGroup {
     /// Real strips in the group (the rest are padding).
     lanes: usize,
@@ -57,21 +59,9 @@ struct LaneGroup {
     dt0: [f64; LANES],
 }
 
-/// One group's march in progress: the bristles' running state and the trapezoid sums of
-/// the integrals (node k at x_k = a xi_k, phase 0).
-struct LaneMarch<'a> {
-    m: &'a CoulombMarch,
-    grp: &'a LaneGroup,
-    /// Stresses, displacements and accumulated plastic slip of the bristle of each lane.
-    t0: [f64; LANES],
-    t1: [f64; LANES],
-    u0: [f64; LANES],
-    u1: [f64; LANES],
-    sh: [f64; LANES],
-    /// At the current node: sliding (or carrying no pressure), and the heat density.
-    slide: [bool; LANES],
-    q: [f64; LANES],
-    /// Sums of tau_x, tau_y, x tau_y, q and of the elastic length over the nodes.
+/// The trapezoid sums of one group's strips over their nodes (node k at x_k = a xi_k, phase
+/// 0): tau_x, tau_y, x tau_y, q and the elastic length, per lane.
+struct LaneSums {
     sx: [f64; LANES],
     sy: [f64; LANES],
     sxy: [f64; LANES],
@@ -166,8 +156,8 @@ impl Contact {
             for o in out.iter_mut() {
                 o[0] = init;
             }
-            let done = LaneMarch::new(&m, &grp).run::<LAT>(bnd, &mut out);
-            tot.add(&done);
+            let sums = march_group::<LAT>(&m, &grp, bnd, &mut out);
+            tot.add(&grp, &sums, m.a);
         }
         self.st = st;
         self.bound_cache = bounds;
@@ -251,143 +241,136 @@ impl Contact {
     }
 }
 
-impl<'a> LaneMarch<'a> {
-    /// A group's march before its first move: unloaded bristles, and node 0 (zero stress,
-    /// elastic, half weight) in the sums.
-    fn new(m: &'a CoulombMarch, grp: &'a LaneGroup) -> Self {
-        let z = [0.0; LANES];
-        Self {
-            m,
-            grp,
-            t0: z,
-            t1: z,
-            u0: z,
-            u1: z,
-            sh: z,
-            slide: [false; LANES],
-            q: z,
-            sx: z,
-            sy: z,
-            sxy: z,
-            sq: z,
-            sel: std::array::from_fn(|l| 0.5 * grp.dxi[l]),
-        }
+/// Marches the bristles of group `grp` over nodes 1..=nx against the Coulomb bounds `bnd`,
+/// storing each lane's state at each node in `out`, and returns the group's sums.
+fn march_group<const LAT: bool>(
+    m: &CoulombMarch,
+    grp: &LaneGroup,
+    bnd: &[[f64; LANES]],
+    out: &mut [&mut [BristleState]],
+) -> LaneSums {
+    // local copies: the compiler keeps them in registers (read through `grp`, every store
+    // of a bristle state could alias them)
+    let (nx, a, t_bulk) = (m.nx, m.a, m.t_bulk);
+    let (ilx, ily, ils) = (m.ilx, m.ily, m.ils);
+    let (lx, ly) = (m.lx, m.ly);
+    let (cy, cs) = (m.cy, m.cs);
+    let (d, dxi, ell, inv_h, hd, du0, dt0) =
+        (grp.d, grp.dxi, grp.ell, grp.inv_h, grp.hd, grp.du0, grp.dt0);
+    let (mut t0, mut t1, mut u0, mut u1, mut sh) = (
+        [0.0; LANES],
+        [0.0; LANES],
+        [0.0; LANES],
+        [0.0; LANES],
+        [0.0; LANES],
+    );
+    let (mut sx, mut sy, mut sxy, mut sq, mut sel) = (
+        [0.0; LANES],
+        [0.0; LANES],
+        [0.0; LANES],
+        [0.0; LANES],
+        [0.0; LANES],
+    );
+    // node 0: zero stress, elastic, half weight
+    for (l, e) in sel.iter_mut().enumerate() {
+        *e = 0.5 * dxi[l];
     }
-
-    /// Marches the group's bristles over nodes 1..=nx against the Coulomb bounds `bnd`,
-    /// storing each lane's state at each node in `out`.
-    fn run<const LAT: bool>(
-        mut self,
-        bnd: &[[f64; LANES]],
-        out: &mut [&mut [BristleState]],
-    ) -> Self {
-        let nx = self.m.nx;
-        for k in 1..=nx {
-            let w = if k < nx { 1.0 } else { 0.5 };
-            let gk = bnd[k];
-            // branch-free over the lanes (the compiler keeps them in SIMD registers):
-            // elastic trial, radial return onto mu p where it is exceeded, zero where
-            // the node carries no pressure (two square roots and one division per lane,
-            // where the C march has one of each, but two lanes per instruction)
-            for (l, &g) in gk.iter().enumerate() {
-                self.node::<LAT>(l, k, g, w);
-            }
-            for (l, o) in out.iter_mut().enumerate().take(LANES) {
-                o[k] = self.state(l);
-            }
-        }
-        self
-    }
-
-    /// Moves the bristle of lane `l` to node k with Coulomb bound `g` = mu p and adds it,
-    /// with trapezoid weight `w`, to the sums.
-    #[inline(always)]
-    fn node<const LAT: bool>(&mut self, l: usize, k: usize, g: f64, w: f64) {
-        let (m, grp) = (self.m, self.grp);
-        let (ilx, ily, ils) = (m.ilx, m.ily, m.ils);
-        let xi_end = grp.ell[l] - k as f64 * grp.dxi[l];
-        let xk = m.a * xi_end;
-        let x = m.a * (xi_end + grp.hd[l]);
-        let du1 = grp.d[l] * (m.cy + m.cs * x);
-        let dt1 = grp.d[l] * (m.cy * ily + m.cs * x * ils);
-        let o = [self.t0[l], self.t1[l]];
-        self.u0[l] += grp.du0[l];
-        self.u1[l] += du1;
-        let tr = [
-            self.t0[l] + grp.dt0[l],
-            if LAT { self.t1[l] + dt1 } else { 0.0 },
-        ];
-        let n2 = if LAT {
-            tr[0] * tr[0] + tr[1] * tr[1]
-        } else {
-            tr[0] * tr[0]
-        };
-        let live = g > 0.0; // false for NaN
-        let mut slide = n2 > g * g;
-        // |trial| and the stiffness along it k = m / |trial|,
-        // m = |(tr_x / L_x, tr_y / L_y)|, with one division:
-        // 1/|trial| = m inv, 1/m = |trial| inv
-        let (ntr, mm) = if LAT {
-            (
-                n2.sqrt(),
-                ((tr[0] * ilx).powi(2) + (tr[1] * ily).powi(2)).sqrt(),
-            )
-        } else {
-            (tr[0].abs(), (tr[0] * ilx).abs())
-        };
-        let inv = 1.0 / (ntr * mm);
-        let scale = if !live {
-            0.0
-        } else if slide {
-            g * mm * inv
-        } else {
-            1.0
-        };
-        // plastic slip (|trial| - mu p) / k
-        if live && slide {
-            self.sh[l] = bristle::add_slip(self.sh[l], (n2 - g * ntr) * ntr * inv);
-        }
-        slide |= !live;
-        self.slide[l] = slide;
-        let (t0, t1) = (tr[0] * scale, tr[1] * scale);
-        self.t0[l] = t0;
-        self.t1[l] = t1;
-        let dux = grp.du0[l] - m.lx * (t0 - o[0]);
-        let duy = du1 - m.ly * (t1 - o[1]);
-        let q = ((t0 * dux + t1 * duy) * grp.inv_h[l]).max(0.0);
-        self.q[l] = q;
-        // trapezoid: node k at x_k = a xi_k (phase 0)
-        let wk = w * grp.dxi[l];
-        self.sx[l] += wk * t0;
-        self.sy[l] += wk * t1;
-        self.sxy[l] += wk * xk * t1;
-        self.sq[l] += wk * q;
-        self.sel[l] += if slide { 0.0 } else { wk };
-    }
-
-    /// The state of the bristle of lane `l` at the current node.
-    #[inline(always)]
-    fn state(&self, l: usize) -> BristleState {
-        BristleState {
-            u: [self.u0[l], self.u1[l]],
-            tau: [self.t0[l], self.t1[l]],
-            sh: self.sh[l],
-            temp: self.m.t_bulk,
-            q: self.q[l],
-            regime: if self.slide[l] {
-                bristle::Regime::Sliding
+    for k in 1..=nx {
+        let w = if k < nx { 1.0 } else { 0.5 };
+        let gk = bnd[k];
+        // branch-free over the lanes (the compiler keeps them in SIMD registers):
+        // elastic trial, radial return onto mu p where it is exceeded, zero where
+        // the node carries no pressure (two square roots and one division per lane,
+        // where the C march has one of each, but two lanes per instruction)
+        let mut xk = [0.0; LANES];
+        let mut du1 = [0.0; LANES];
+        let mut o = [[0.0; LANES]; 2];
+        let mut slide = [false; LANES];
+        let mut q = [0.0; LANES];
+        for l in 0..LANES {
+            let xi_end = ell[l] - k as f64 * dxi[l];
+            xk[l] = a * xi_end;
+            let x = a * (xi_end + hd[l]);
+            du1[l] = d[l] * (cy + cs * x);
+            let dt1 = d[l] * (cy * ily + cs * x * ils);
+            o[0][l] = t0[l];
+            o[1][l] = t1[l];
+            u0[l] += du0[l];
+            u1[l] += du1[l];
+            let tr = [t0[l] + dt0[l], if LAT { t1[l] + dt1 } else { 0.0 }];
+            let n2 = if LAT {
+                tr[0] * tr[0] + tr[1] * tr[1]
             } else {
-                bristle::Regime::Elastic
-            },
+                tr[0] * tr[0]
+            };
+            let g = gk[l];
+            let live = g > 0.0; // false for NaN
+            slide[l] = n2 > g * g;
+            // |trial| and the stiffness along it k = m / |trial|,
+            // m = |(tr_x / L_x, tr_y / L_y)|, with one division:
+            // 1/|trial| = m inv, 1/m = |trial| inv
+            let (ntr, m) = if LAT {
+                (
+                    n2.sqrt(),
+                    ((tr[0] * ilx).powi(2) + (tr[1] * ily).powi(2)).sqrt(),
+                )
+            } else {
+                (tr[0].abs(), (tr[0] * ilx).abs())
+            };
+            let inv = 1.0 / (ntr * m);
+            let scale = if !live {
+                0.0
+            } else if slide[l] {
+                g * m * inv
+            } else {
+                1.0
+            };
+            // plastic slip (|trial| - mu p) / k
+            if live && slide[l] {
+                sh[l] = bristle::add_slip(sh[l], (n2 - g * ntr) * ntr * inv);
+            }
+            slide[l] |= !live;
+            t0[l] = tr[0] * scale;
+            t1[l] = tr[1] * scale;
+            let dux = du0[l] - lx * (t0[l] - o[0][l]);
+            let duy = du1[l] - ly * (t1[l] - o[1][l]);
+            q[l] = ((t0[l] * dux + t1[l] * duy) * inv_h[l]).max(0.0);
+            // trapezoid: node k at x_k = a xi_k (phase 0)
+            let wk = w * dxi[l];
+            sx[l] += wk * t0[l];
+            sy[l] += wk * t1[l];
+            sxy[l] += wk * xk[l] * t1[l];
+            sq[l] += wk * q[l];
+            sel[l] += if slide[l] { 0.0 } else { wk };
         }
+        for l in 0..LANES {
+            out[l][k] = BristleState {
+                u: [u0[l], u1[l]],
+                tau: [t0[l], t1[l]],
+                sh: sh[l],
+                temp: t_bulk,
+                q: q[l],
+                regime: if slide[l] {
+                    bristle::Regime::Sliding
+                } else {
+                    bristle::Regime::Elastic
+                },
+            };
+        }
+    }
+    LaneSums {
+        sx,
+        sy,
+        sxy,
+        sq,
+        sel,
     }
 }
 
 impl Totals {
     /// Adds the integrals of a group's real strips (strip area a dy; M_z about the contact
     /// centre).
-    fn add(&mut self, s: &LaneMarch) {
-        let (a, grp) = (s.m.a, s.grp);
+    fn add(&mut self, grp: &LaneGroup, s: &LaneSums, a: f64) {
         for l in 0..grp.lanes {
             let da = a * grp.dy[l];
             self.fx += s.sx[l] * da;
