@@ -342,6 +342,50 @@ fn parse_geometry(src: &str, m: &Map<String, Value>) -> Result<Geometry> {
     }
 }
 
+/// The document's `bound`: "elliptic" or "parabolic".
+fn parse_bound(src: &str, b: &str) -> Result<Bound> {
+    match b {
+        "elliptic" => Ok(Bound::Elliptic),
+        "parabolic" => Ok(Bound::Parabolic),
+        _ => Err(cfg_err(
+            src,
+            format!("bound '{b}': expected \"elliptic\" or \"parabolic\""),
+        )),
+    }
+}
+
+/// The parameters of a formula effect, each {"value", "min", "max"} (what it leaves out:
+/// NaN, and no bound).
+fn formula_params(src: &str, f: &RawFormula) -> Result<Vec<crate::formula::FormulaParam>> {
+    let mut ps = Vec::new();
+    for (n, v) in &f.params {
+        let get = |k: &str, d: f64| -> Result<f64> {
+            match v.get(k) {
+                None => Ok(d),
+                Some(x) => x.as_f64().ok_or_else(|| {
+                    cfg_err(
+                        src,
+                        format!(
+                            "formula_effects.{}.params.{n}.{k}: expected a number",
+                            f.name
+                        ),
+                    )
+                }),
+            }
+        };
+        if !v.is_object() {
+            return Err(cfg_err(src, format!("formula_effects.{}.params.{n}: expected {{\"value\": v, \"min\": lo, \"max\": hi}}", f.name)));
+        }
+        ps.push(crate::formula::FormulaParam {
+            name: n.clone(),
+            value: get("value", f64::NAN)?,
+            min: get("min", f64::MIN)?,
+            max: get("max", f64::MAX)?,
+        });
+    }
+    Ok(ps)
+}
+
 /// A modifier of either kind, as a configuration holds it.
 #[derive(Clone, Debug, PartialEq)]
 pub enum AnyModifier {
@@ -462,6 +506,43 @@ impl Config {
                 format!("line {}, column {}: {}", e.line(), e.column(), e),
             )
         })?;
+        let mut cfg = Self::start_of(&raw, src)?;
+        if let Some(list) = &raw.effects {
+            cfg.apply_effects(list, src)?;
+        }
+        if let Some(ps) = &raw.params {
+            for (name, v) in ps {
+                cfg.apply_param(name, v, src)?;
+            }
+        }
+        if let Some(b) = &raw.bound {
+            cfg.bound = parse_bound(src, b)?;
+        }
+        if let Some(g) = raw.grid {
+            g.validate().map_err(|e| cfg_err(src, e.to_string()))?;
+            cfg.grid = g;
+        }
+        if let Some(g) = &raw.geometry {
+            cfg.geometry = parse_geometry(src, g)?;
+        }
+        if let Some(list) = &raw.formula_effects {
+            for f in list {
+                cfg.add_formula(f, src)?;
+            }
+        }
+        if let Some(list) = &raw.custom_effects {
+            for c in list {
+                cfg.add_custom(c, src)?;
+            }
+        }
+        cfg.check_model(src)?;
+        Ok(cfg)
+    }
+
+    /// The configuration a document starts from: its preset, or its model with no effects and
+    /// the default parameters, grid and geometry; a model given beside a preset must be the
+    /// preset's.
+    fn start_of(raw: &RawConfig, src: &str) -> Result<Self> {
         let mut cfg = match &raw.preset {
             Some(p) => {
                 let base = Self::preset(p).map_err(|e| cfg_err(src, format!("preset: {e}")))?;
@@ -503,187 +584,162 @@ impl Config {
             }
             cfg.model = kind;
         }
-        if let Some(list) = &raw.effects {
-            let signed = |e: &String| e.starts_with('+') || e.starts_with('-');
-            let relative = !list.is_empty() && list.iter().all(signed);
-            if list.iter().any(signed) && !relative {
+        Ok(cfg)
+    }
+
+    /// The document's `effects`: a full list replaces the effects, a list of only +NAME/-NAME
+    /// switches them on and off.
+    fn apply_effects(&mut self, list: &[String], src: &str) -> Result<()> {
+        let signed = |e: &String| e.starts_with('+') || e.starts_with('-');
+        let relative = !list.is_empty() && list.iter().all(signed);
+        if list.iter().any(signed) && !relative {
+            return Err(cfg_err(
+                src,
+                format!(
+                    "effects {list:?} mixes names with and without +/-: write either a full list (replaces the preset's) or only +NAME/-NAME changes"
+                ),
+            ));
+        }
+        if !relative {
+            self.effects = EffectSet::empty();
+        }
+        let by_name =
+            |n: &str| effects::by_name(n).map_err(|e| cfg_err(src, format!("effects: {e}")));
+        for e in list {
+            if let Some(n) = e.strip_prefix('-') {
+                self.effects.remove(by_name(n)?);
+                continue;
+            }
+            let n = e.strip_prefix('+').unwrap_or(e);
+            self.effects.insert(by_name(n)?);
+        }
+        Ok(())
+    }
+
+    /// One entry of the document's `params`: a value, or {"value", "min", "max"} (the bounds
+    /// a fit keeps it in).
+    fn apply_param(&mut self, name: &str, v: &Value, src: &str) -> Result<()> {
+        let id = params::by_name(name).ok_or_else(|| {
+            cfg_err(
+                src,
+                format!(
+                    "params.{name}: unknown parameter; accepted: {}",
+                    Config::param_names().join(", ")
+                ),
+            )
+        })?;
+        let (x, bounds) = match v {
+            Value::Object(m) => {
+                let (x, lo, hi) = self.param_with_bounds(id, name, m, src)?;
+                (x, Some((lo, hi)))
+            }
+            _ => (param_value(src, name, v)?, None),
+        };
+        let err = |e: CreepError| cfg_err(src, format!("params.{name}: {e}"));
+        if let Some((lo, hi)) = bounds {
+            // widen first so that a value outside the old bounds can be set
+            let s = params::spec(id);
+            self.params.set_bounds(id, s.min, s.max).map_err(err)?;
+            self.params.set(id, x).map_err(err)?;
+            self.params.set_bounds(id, lo, hi).map_err(err)?;
+        } else {
+            self.params.set(id, x).map_err(err)?;
+        }
+        Ok(())
+    }
+
+    /// (value, min, max) of a parameter given as an object `m`; what it leaves out keeps its
+    /// current value.
+    fn param_with_bounds(
+        &self,
+        id: params::P,
+        name: &str,
+        m: &Map<String, Value>,
+        src: &str,
+    ) -> Result<(f64, f64, f64)> {
+        for k in m.keys() {
+            if !["value", "min", "max"].contains(&k.as_str()) {
                 return Err(cfg_err(
                     src,
-                    format!(
-                        "effects {list:?} mixes names with and without +/-: write either a full list (replaces the preset's) or only +NAME/-NAME changes"
-                    ),
+                    format!("params.{name}.{k}: unknown key; accepted: value, min, max"),
                 ));
             }
-            if !relative {
-                cfg.effects = EffectSet::empty();
-            }
-            let by_name =
-                |n: &str| effects::by_name(n).map_err(|e| cfg_err(src, format!("effects: {e}")));
-            for e in list {
-                if let Some(n) = e.strip_prefix('-') {
-                    cfg.effects.remove(by_name(n)?);
-                    continue;
-                }
-                let n = e.strip_prefix('+').unwrap_or(e);
-                cfg.effects.insert(by_name(n)?);
-            }
         }
-        if let Some(ps) = &raw.params {
-            for (name, v) in ps {
-                let id = params::by_name(name).ok_or_else(|| {
-                    cfg_err(
-                        src,
-                        format!(
-                            "params.{name}: unknown parameter; accepted: {}",
-                            Config::param_names().join(", ")
-                        ),
-                    )
-                })?;
-                let (x, bounds) = match v {
-                    Value::Object(m) => {
-                        for k in m.keys() {
-                            if !["value", "min", "max"].contains(&k.as_str()) {
-                                return Err(cfg_err(
-                                    src,
-                                    format!(
-                                        "params.{name}.{k}: unknown key; accepted: value, min, max"
-                                    ),
-                                ));
-                            }
-                        }
-                        let x = m
-                            .get("value")
-                            .map(|v| param_value(src, &format!("{name}.value"), v))
-                            .transpose()?
-                            .unwrap_or(cfg.params.get(id));
-                        let (rlo, rhi) = cfg.params.bounds(id);
-                        let lo = m
-                            .get("min")
-                            .map(|v| param_value(src, &format!("{name}.min"), v))
-                            .transpose()?
-                            .unwrap_or(rlo);
-                        let hi = m
-                            .get("max")
-                            .map(|v| param_value(src, &format!("{name}.max"), v))
-                            .transpose()?
-                            .unwrap_or(rhi);
-                        (x, Some((lo, hi)))
-                    }
-                    _ => (param_value(src, name, v)?, None),
-                };
-                if let Some((lo, hi)) = bounds {
-                    // widen first so that a value outside the old bounds can be set
-                    let s = params::spec(id);
-                    cfg.params
-                        .set_bounds(id, s.min, s.max)
-                        .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
-                    cfg.params
-                        .set(id, x)
-                        .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
-                    cfg.params
-                        .set_bounds(id, lo, hi)
-                        .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
-                } else {
-                    cfg.params
-                        .set(id, x)
-                        .map_err(|e| cfg_err(src, format!("params.{name}: {e}")))?;
-                }
-            }
+        let x = m
+            .get("value")
+            .map(|v| param_value(src, &format!("{name}.value"), v))
+            .transpose()?
+            .unwrap_or(self.params.get(id));
+        let (rlo, rhi) = self.params.bounds(id);
+        let lo = m
+            .get("min")
+            .map(|v| param_value(src, &format!("{name}.min"), v))
+            .transpose()?
+            .unwrap_or(rlo);
+        let hi = m
+            .get("max")
+            .map(|v| param_value(src, &format!("{name}.max"), v))
+            .transpose()?
+            .unwrap_or(rhi);
+        Ok((x, lo, hi))
+    }
+
+    /// Adds one formula effect of the document's `formula_effects` to the modifiers.
+    fn add_formula(&mut self, f: &RawFormula, src: &str) -> Result<()> {
+        let target = crate::formula::Target::parse(&f.target)
+            .map_err(|e| cfg_err(src, format!("formula_effects.{}: {e}", f.name)))?;
+        let ps = formula_params(src, f)?;
+        let fe = crate::formula::FormulaEffect::new(&f.name, target, &f.factor, ps)
+            .map_err(|e| cfg_err(src, e.to_string()))?;
+        if self.modifiers.iter().any(|g| g.name() == fe.name) {
+            return Err(cfg_err(
+                src,
+                format!("formula_effects: duplicate name '{}'", fe.name),
+            ));
         }
-        if let Some(b) = &raw.bound {
-            cfg.bound = match b.as_str() {
-                "elliptic" => Bound::Elliptic,
-                "parabolic" => Bound::Parabolic,
-                _ => {
-                    return Err(cfg_err(
-                        src,
-                        format!("bound '{b}': expected \"elliptic\" or \"parabolic\""),
-                    ))
-                }
-            };
+        self.modifiers.push(AnyModifier::Formula(fe));
+        Ok(())
+    }
+
+    /// Adds one Rust effect of the document's `custom_effects`, with its parameter values,
+    /// to the modifiers.
+    fn add_custom(&mut self, c: &RawCustom, src: &str) -> Result<()> {
+        let mut u = crate::custom::CustomUse::by_name(&c.name)
+            .map_err(|e| cfg_err(src, format!("custom_effects: {e}")))?;
+        for (n, v) in &c.params {
+            let x = param_value(src, &format!("{}.{n}", c.name), v)?;
+            u.set(n, x)
+                .map_err(|e| cfg_err(src, format!("custom_effects: {e}")))?;
         }
-        if let Some(g) = raw.grid {
-            g.validate().map_err(|e| cfg_err(src, e.to_string()))?;
-            cfg.grid = g;
+        if self.modifiers.iter().any(|k| k.name() == c.name) {
+            return Err(cfg_err(
+                src,
+                format!(
+                    "custom_effects: '{}' given twice (formula and Rust effects share one name space: their parameters are NAME.PARAM)",
+                    c.name
+                ),
+            ));
         }
-        if let Some(g) = &raw.geometry {
-            cfg.geometry = parse_geometry(src, g)?;
-        }
-        if let Some(list) = &raw.formula_effects {
-            for f in list {
-                let target = crate::formula::Target::parse(&f.target)
-                    .map_err(|e| cfg_err(src, format!("formula_effects.{}: {e}", f.name)))?;
-                let mut ps = Vec::new();
-                for (n, v) in &f.params {
-                    let get = |k: &str, d: f64| -> Result<f64> {
-                        match v.get(k) {
-                            None => Ok(d),
-                            Some(x) => x.as_f64().ok_or_else(|| {
-                                cfg_err(
-                                    src,
-                                    format!(
-                                        "formula_effects.{}.params.{n}.{k}: expected a number",
-                                        f.name
-                                    ),
-                                )
-                            }),
-                        }
-                    };
-                    if !v.is_object() {
-                        return Err(cfg_err(src, format!("formula_effects.{}.params.{n}: expected {{\"value\": v, \"min\": lo, \"max\": hi}}", f.name)));
-                    }
-                    ps.push(crate::formula::FormulaParam {
-                        name: n.clone(),
-                        value: get("value", f64::NAN)?,
-                        min: get("min", f64::MIN)?,
-                        max: get("max", f64::MAX)?,
-                    });
-                }
-                let fe = crate::formula::FormulaEffect::new(&f.name, target, &f.factor, ps)
-                    .map_err(|e| cfg_err(src, e.to_string()))?;
-                if cfg.modifiers.iter().any(|g| g.name() == fe.name) {
-                    return Err(cfg_err(
-                        src,
-                        format!("formula_effects: duplicate name '{}'", fe.name),
-                    ));
-                }
-                cfg.modifiers.push(AnyModifier::Formula(fe));
-            }
-        }
-        if let Some(list) = &raw.custom_effects {
-            for c in list {
-                let mut u = crate::custom::CustomUse::by_name(&c.name)
-                    .map_err(|e| cfg_err(src, format!("custom_effects: {e}")))?;
-                for (n, v) in &c.params {
-                    let x = param_value(src, &format!("{}.{n}", c.name), v)?;
-                    u.set(n, x)
-                        .map_err(|e| cfg_err(src, format!("custom_effects: {e}")))?;
-                }
-                if cfg.modifiers.iter().any(|k| k.name() == c.name) {
-                    return Err(cfg_err(
-                        src,
-                        format!(
-                            "custom_effects: '{}' given twice (formula and Rust effects share one name space: their parameters are NAME.PARAM)",
-                            c.name
-                        ),
-                    ));
-                }
-                cfg.modifiers.push(AnyModifier::Rust(u));
-            }
-        }
-        if cfg.model == ModelKind::Polach && !cfg.modifiers.is_empty() {
+        self.modifiers.push(AnyModifier::Rust(u));
+        Ok(())
+    }
+
+    /// Refuses what the model family cannot run: modifiers on Polach, FASTSIM without the
+    /// Coulomb bound.
+    fn check_model(&self, src: &str) -> Result<()> {
+        if self.model == ModelKind::Polach && !self.modifiers.is_empty() {
             return Err(cfg_err(
                 src,
                 "formula_effects act on the bristle engine (ecf, fastsim), not on polach".into(),
             ));
         }
-        if cfg.model == ModelKind::Fastsim && !cfg.effects.has(Effect::Coulomb) {
+        if self.model == ModelKind::Fastsim && !self.effects.has(Effect::Coulomb) {
             return Err(cfg_err(
                 src,
                 "model fastsim needs the effect \"coulomb\"".into(),
             ));
         }
-        Ok(cfg)
+        Ok(())
     }
 
     /// The configuration as a JSON document that [`Config::from_json_str`] reads back.

@@ -1,112 +1,16 @@
 //! Advancing the bristles: one bristle move with its local temperature (Eq. 4.16, 4.21, 4.35), sub-steps of a strip, the march of new bristles.
 
+use super::kin::{weighted_stress, Kin};
 use super::strip::Strip;
-use super::{Contact, V_STANDSTILL};
+use super::Contact;
 use crate::bristle::{self, BristleState};
 use crate::material::NodeP;
-use crate::thermal::{self, StepFactors, N_KERNEL};
+use crate::thermal::{StepFactors, N_KERNEL};
 
 /// Entries of the kernel-factor cache (distinct sub-step lengths kept).
 const FAC_CACHE: usize = 8;
 
-/// Per-sub-step kinematic context of one strip.
-pub(super) struct Kin {
-    pub(super) h: f64,
-    pub(super) dist: f64,
-    pub(super) cx: f64,
-    pub(super) cy: f64,
-    pub(super) cs: f64,
-    pub(super) lx: f64,
-    pub(super) ly: f64,
-    pub(super) ls: f64,
-    pub(super) heat: bool,
-    pub(super) alpha_c: f64,
-    pub(super) t_bulk: f64,
-    /// alpha_c 2 sqrt(h): the flash temperature per heat density of the sub-step's own
-    /// interval (Eq. 4.35's first term), 0 without heat flow.
-    pub(super) self_c: f64,
-    /// Weight of the sub-step's start stress in its dissipation (Eq. 4.29): 0 for moves of
-    /// at most one cell (the march and the cell schemes: the stress at the end); for a
-    /// continuous sub-step of n > 1 cells (1 - 1/n)/2, so that it dissipates what n one-cell
-    /// moves would (to second order), see [`Contact::advance_continuous`].
-    pub(super) w_old: f64,
-}
-
-impl Kin {
-    /// The rigid slip of a move whose midpoint is at (x, y) in the contact frame, m
-    /// (Eq. 4.16: du = v h (c_x - c_s y, c_y + c_s x), with v h the distance moved).
-    #[inline]
-    pub(super) fn rigid_slip(&self, [x, y]: [f64; 2]) -> [f64; 2] {
-        let d = self.dist;
-        [d * (self.cx - self.cs * y), d * (self.cy + self.cs * x)]
-    }
-
-    /// The flexibilities L_x + L_e, L_y + L_e (m/Pa) for the layer's flexibility `le` and the
-    /// elastic stress increment of the move at (x, y), Pa (Eq. 4.21).
-    #[inline]
-    pub(super) fn flex(&self, le: f64, [x, y]: [f64; 2]) -> (f64, f64, [f64; 2]) {
-        let d = self.dist;
-        let lxe = self.lx + le;
-        let lye = self.ly + le;
-        let lse = self.ls + le;
-        let dtau = [
-            d * (self.cx / lxe - self.cs * y / lse),
-            d * (self.cy / lye + self.cs * x / lse),
-        ];
-        (lxe, lye, dtau)
-    }
-}
-
-/// The stress that multiplies a long continuous sub-step's plastic slip in its
-/// dissipation (Eq. 4.29): `new - w (new - old)`, w = [`Kin::w_old`] > 0. (Moves of at most
-/// one cell take `new` itself: they run the instance without the weight.)
-#[inline]
-pub(super) fn weighted_stress(new: [f64; 2], old: [f64; 2], w: f64) -> [f64; 2] {
-    [
-        new[0] - w * (new[0] - old[0]),
-        new[1] - w * (new[1] - old[1]),
-    ]
-}
-
 impl Contact {
-    /// Kinematic/thermal context for a sub-step of duration `h` moving distance `dist`.
-    pub(super) fn kin(&self, h: f64, dist: f64) -> Kin {
-        let i = &self.inputs;
-        let heat = i.v > V_STANDSTILL && h > 0.0;
-        let vw = i.v * (1.0 + i.cx).abs();
-        // with surface_time_flash alpha sqrt(v / v_w): Eq. 4.34 over the wheel surface's
-        // time x / v_w, written in the layer's time x / v (finite for v_w -> 0)
-        let partition = if self.r.surface_time {
-            thermal::surface_time_partition
-        } else {
-            thermal::heat_partition
-        };
-        let alpha = partition(
-            vw,
-            i.v,
-            self.r.lambda_w,
-            self.r.kappa_w,
-            self.r.lambda_r,
-            self.r.kappa_r,
-        );
-        let alpha_c = alpha * thermal::flash_factor(self.r.lambda_w, self.r.kappa_w);
-        Kin {
-            h,
-            dist,
-            cx: i.cx,
-            cy: i.cy,
-            cs: i.spin,
-            lx: self.flex.0,
-            ly: self.flex.1,
-            ls: self.flex.2,
-            heat,
-            alpha_c,
-            t_bulk: i.t_bulk,
-            self_c: if heat { alpha_c * 2.0 * h.sqrt() } else { 0.0 },
-            w_old: 0.0,
-        }
-    }
-
     #[inline]
     pub(super) fn idx(&self, j: usize, slot: usize) -> usize {
         j * (self.nx + 1) + (self.head[j] + slot) % (self.nx + 1)
@@ -244,15 +148,16 @@ impl Contact {
             self.eta[j] * self.patch.b
         };
         let x_mid = a * (xi_end + 0.5 * kin.dist / a);
-        if self.r.temperature || self.has_modifiers() {
-            self.update_bristle::<W>(kin, np, [x_mid, y], s, acc, fac);
-        } else {
+        if self.fast.cold {
             self.update_bristle_cold::<W>(kin, np, [x_mid, y], s);
+        } else {
+            self.update_bristle::<W>(kin, np, [x_mid, y], s, acc, fac);
         }
     }
 
-    /// [`Self::update_bristle`] without temperature and modifiers (FASTSIM, isothermal ECF):
-    /// the same operations without the temperature solve and the heat kernel.
+    /// [`Self::update_bristle`] on the fast path [`super::FastPath::Cold`] (what it supports:
+    /// engine/fastpath.rs `COLD`; FASTSIM, isothermal ECF): the same operations without the
+    /// temperature solve and the heat kernel.
     #[inline]
     fn update_bristle_cold<const W: bool>(
         &self,
@@ -577,242 +482,6 @@ impl Contact {
         *sp.phase = phase_end;
         if wraps > 0 {
             self.march_new(sp, wraps.min(nx + 1), phase_end * dx);
-        }
-    }
-}
-
-/// Strips marched side by side in [`Contact::steady_coulomb`] (independent dependency
-/// chains the processor overlaps).
-pub(super) const LANES: usize = 4;
-
-impl Contact {
-    /// The Coulomb bounds mu p of the lattice nodes k = 0..=nx, [`LANES`] strips side by side
-    /// (group g, node k at `g * (nx + 1) + k`), cached per peak pressure.
-    fn bound_lanes(&mut self) -> Vec<[f64; LANES]> {
-        let nx = self.nx;
-        let groups = self.ny.div_ceil(LANES);
-        let mut b = std::mem::take(&mut self.bound_cache);
-        if self.bound_cache_p0 != self.patch.p0 || b.len() != groups * (nx + 1) {
-            b.clear();
-            b.resize(groups * (nx + 1), [0.0; LANES]);
-            for j in 0..self.ny {
-                let mut nodes = std::mem::take(&mut self.np_cache[j]);
-                let mut p0 = self.np_cache_p0[j];
-                self.lattice_nodes(j, &mut nodes, &mut p0);
-                self.np_cache_p0[j] = p0;
-                let (g, l) = (j / LANES, j % LANES);
-                for (k, n) in nodes.iter().enumerate().skip(1) {
-                    b[g * (nx + 1) + k][l] = n.bound;
-                }
-                self.np_cache[j] = nodes;
-            }
-            self.bound_cache_p0 = self.patch.p0;
-        }
-        b
-    }
-
-    /// The steady state of FASTSIM (see [`Self::coulomb_path`]): the march of
-    /// [`Self::march_coulomb`] for every strip at phase 0, [`LANES`] strips side by side, with
-    /// the integrals of [`Self::integrate`] (trapezoid over the nodes) summed in the same
-    /// pass. Every strip has nx cells, so the strips of a group advance in lockstep and
-    /// the latency of each strip's sqrt/division chain is hidden behind the others'.
-    /// The states stored are those of the general march (to rounding).
-    pub(super) fn steady_coulomb(&mut self) -> super::Outputs {
-        if self.inputs.cy == 0.0 && self.inputs.spin == 0.0 {
-            self.steady_coulomb_lanes::<false>()
-        } else {
-            self.steady_coulomb_lanes::<true>()
-        }
-    }
-
-    /// [`Self::steady_coulomb`]; `LAT = false` for pure longitudinal creepage, where the
-    /// lateral stress stays 0 and the norms are absolute values (no square roots; the
-    /// same numbers, since sqrt(x^2) = |x| exactly).
-    #[inline(never)]
-    fn steady_coulomb_lanes<const LAT: bool>(&mut self) -> super::Outputs {
-        let nx = self.nx;
-        let (a, b) = (self.patch.a, self.patch.b);
-        let line = self.patch.line;
-        let v = self.inputs.v;
-        let t_bulk = self.inputs.t_bulk;
-        for j in 0..self.ny {
-            self.head[j] = 0;
-            self.phase[j] = 0.0;
-        }
-        let bounds = self.bound_lanes();
-        let (mut fx, mut fy, mut mz, mut pf, mut area, mut el) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        let init = BristleState {
-            temp: t_bulk,
-            ..BristleState::default()
-        };
-        let kin0 = self.kin(0.0, 0.0);
-        let (ilx, ily, ils) = (1.0 / kin0.lx, 1.0 / kin0.ly, 1.0 / kin0.ls);
-        let (lx, ly) = (kin0.lx, kin0.ly);
-        let (cx, cy, cs) = (kin0.cx, kin0.cy, kin0.cs);
-        let heat = v > V_STANDSTILL;
-        let mut scratch = vec![init; (LANES - 1) * (nx + 1)];
-        let mut st = std::mem::take(&mut self.st);
-        for (g, (strips, bnd)) in st
-            .chunks_mut(LANES * (nx + 1))
-            .zip(bounds.chunks_exact(nx + 1))
-            .enumerate()
-        {
-            let g0 = g * LANES;
-            let lanes = (self.ny - g0).min(LANES);
-            // per-lane constants (padding lanes repeat the last strip into scratch)
-            let jl = |l: usize| g0 + l.min(lanes - 1);
-            let d: [f64; LANES] = std::array::from_fn(|l| 2.0 * self.ell[jl(l)] * a / nx as f64);
-            let dxi: [f64; LANES] = std::array::from_fn(|l| 2.0 * self.ell[jl(l)] / nx as f64);
-            let ell: [f64; LANES] = std::array::from_fn(|l| self.ell[jl(l)]);
-            let y: [f64; LANES] =
-                std::array::from_fn(|l| if line { 0.0 } else { self.eta[jl(l)] * b });
-            let dy: [f64; LANES] =
-                std::array::from_fn(|l| if line { 2.0 * b } else { self.deta[jl(l)] * b });
-            let inv_h: [f64; LANES] =
-                std::array::from_fn(|l| if heat { self.r.kq / (d[l] / v) } else { 0.0 });
-            // half the move in normalized length: the spin lever arm at the move's midpoint
-            let hd: [f64; LANES] = std::array::from_fn(|l| 0.5 * d[l] / a);
-            let du0: [f64; LANES] = std::array::from_fn(|l| d[l] * (cx - cs * y[l]));
-            let dt0: [f64; LANES] = std::array::from_fn(|l| d[l] * (cx * ilx - cs * y[l] * ils));
-            let (mut t0, mut t1, mut u0, mut u1, mut sh) = (
-                [0.0; LANES],
-                [0.0; LANES],
-                [0.0; LANES],
-                [0.0; LANES],
-                [0.0; LANES],
-            );
-            let (mut sx, mut sy, mut sxy, mut sq, mut sel) = (
-                [0.0; LANES],
-                [0.0; LANES],
-                [0.0; LANES],
-                [0.0; LANES],
-                [0.0; LANES],
-            );
-            let (real, pad) = strips.split_at_mut(lanes * (nx + 1));
-            let mut out: Vec<&mut [BristleState]> = real
-                .chunks_exact_mut(nx + 1)
-                .chain(scratch.chunks_exact_mut(nx + 1))
-                .take(LANES)
-                .collect();
-            debug_assert!(pad.is_empty() || g0 + lanes == self.ny);
-            for o in out.iter_mut() {
-                o[0] = init;
-            }
-            // node 0: zero stress, elastic, half weight
-            for (l, e) in sel.iter_mut().enumerate() {
-                *e = 0.5 * dxi[l];
-            }
-            for k in 1..=nx {
-                let w = if k < nx { 1.0 } else { 0.5 };
-                let gk = bnd[k];
-                // branch-free over the lanes (the compiler keeps them in SIMD registers):
-                // elastic trial, radial return onto mu p where it is exceeded, zero where
-                // the node carries no pressure (two square roots and one division per lane,
-                // where the C march has one of each, but two lanes per instruction)
-                let mut xk = [0.0; LANES];
-                let mut du1 = [0.0; LANES];
-                let mut o = [[0.0; LANES]; 2];
-                let mut slide = [false; LANES];
-                let mut q = [0.0; LANES];
-                for l in 0..LANES {
-                    let xi_end = ell[l] - k as f64 * dxi[l];
-                    xk[l] = a * xi_end;
-                    let x = a * (xi_end + hd[l]);
-                    du1[l] = d[l] * (cy + cs * x);
-                    let dt1 = d[l] * (cy * ily + cs * x * ils);
-                    o[0][l] = t0[l];
-                    o[1][l] = t1[l];
-                    u0[l] += du0[l];
-                    u1[l] += du1[l];
-                    let tr = [t0[l] + dt0[l], if LAT { t1[l] + dt1 } else { 0.0 }];
-                    let n2 = if LAT {
-                        tr[0] * tr[0] + tr[1] * tr[1]
-                    } else {
-                        tr[0] * tr[0]
-                    };
-                    let g = gk[l];
-                    let live = g > 0.0; // false for NaN
-                    slide[l] = n2 > g * g;
-                    // |trial| and the stiffness along it k = m / |trial|,
-                    // m = |(tr_x / L_x, tr_y / L_y)|, with one division:
-                    // 1/|trial| = m inv, 1/m = |trial| inv
-                    let (ntr, m) = if LAT {
-                        (
-                            n2.sqrt(),
-                            ((tr[0] * ilx).powi(2) + (tr[1] * ily).powi(2)).sqrt(),
-                        )
-                    } else {
-                        (tr[0].abs(), (tr[0] * ilx).abs())
-                    };
-                    let inv = 1.0 / (ntr * m);
-                    let scale = if !live {
-                        0.0
-                    } else if slide[l] {
-                        g * m * inv
-                    } else {
-                        1.0
-                    };
-                    // plastic slip (|trial| - mu p) / k
-                    if live && slide[l] {
-                        sh[l] = bristle::add_slip(sh[l], (n2 - g * ntr) * ntr * inv);
-                    }
-                    slide[l] |= !live;
-                    t0[l] = tr[0] * scale;
-                    t1[l] = tr[1] * scale;
-                    let dux = du0[l] - lx * (t0[l] - o[0][l]);
-                    let duy = du1[l] - ly * (t1[l] - o[1][l]);
-                    q[l] = ((t0[l] * dux + t1[l] * duy) * inv_h[l]).max(0.0);
-                    // trapezoid: node k at x_k = a xi_k (phase 0)
-                    let wk = w * dxi[l];
-                    sx[l] += wk * t0[l];
-                    sy[l] += wk * t1[l];
-                    sxy[l] += wk * xk[l] * t1[l];
-                    sq[l] += wk * q[l];
-                    sel[l] += if slide[l] { 0.0 } else { wk };
-                }
-                for l in 0..LANES {
-                    out[l][k] = BristleState {
-                        u: [u0[l], u1[l]],
-                        tau: [t0[l], t1[l]],
-                        sh: sh[l],
-                        temp: t_bulk,
-                        q: q[l],
-                        regime: if slide[l] {
-                            bristle::Regime::Sliding
-                        } else {
-                            bristle::Regime::Elastic
-                        },
-                    };
-                }
-            }
-            for l in 0..lanes {
-                let da = a * dy[l];
-                fx += sx[l] * da;
-                fy += sy[l] * da;
-                mz += (sxy[l] - y[l] * sx[l]) * da;
-                pf += sq[l] * da;
-                el += sel[l] * da;
-                area += 2.0 * ell[l] * da;
-            }
-        }
-        self.st = st;
-        self.bound_cache = bounds;
-        let fn_n = self.inputs.fn_n;
-        let area = area.max(f64::MIN_POSITIVE);
-        super::Outputs {
-            fx,
-            fy,
-            mz,
-            f: if fn_n > 0.0 { fx / fn_n } else { 0.0 },
-            t_max: t_bulk,
-            t_mean: t_bulk,
-            p_fric: pf,
-            frac_elastic: el / area,
-            frac_plastic: 0.0,
-            frac_sliding: (area - el).max(0.0) / area,
-            a,
-            b,
-            p0: self.patch.p0,
         }
     }
 }

@@ -1,6 +1,6 @@
 //! One bristle's move over a sub-step: the bristle law (Sec. 4.1) under the local temperature solve (Eq. 4.35), and where an adhering bristle yields (the cold crossing, docs/model.md section 9 step 5).
 
-use super::advance::{weighted_stress, Kin};
+use super::kin::{weighted_stress, Kin};
 use super::Contact;
 use crate::bristle::{self, BristleState};
 use crate::material::NodeP;

@@ -15,8 +15,8 @@ use crate::material::Resolved;
 /// A fast path of the bristle engine (see the module's text).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FastPath {
-    /// FASTSIM's march and steady state (`Contact::coulomb_path`, `march_coulomb`,
-    /// `steady_coulomb_lanes` in engine/advance.rs): Kalker's brush with the radial return
+    /// FASTSIM's march and steady state (`Contact::coulomb_path`, `march_coulomb` in
+    /// engine/advance.rs, `steady_coulomb` in engine/steady_coulomb.rs): Kalker's brush with the radial return
     /// onto the Coulomb bound mu p in one tight loop, no heat.
     Coulomb,
     /// The scalar temperature solve of a layer that only softens as it heats
@@ -25,11 +25,20 @@ pub enum FastPath {
     /// The layer's compliance L_e taken once per bristle move instead of once per trial
     /// temperature of the local solve (the `fixed` flexibilities of `update_bristle`).
     FixedLe,
+    /// The bristle move of an isothermal layer (engine/advance.rs `update_bristle_cold`):
+    /// the general material and stress update without the temperature solve and the heat
+    /// kernel (FASTSIM's moves off its march, an ECF configuration without temperature).
+    Cold,
 }
 
 impl FastPath {
     /// Every fast path.
-    pub const ALL: [FastPath; 3] = [FastPath::Coulomb, FastPath::Softening, FastPath::FixedLe];
+    pub const ALL: [FastPath; 4] = [
+        FastPath::Coulomb,
+        FastPath::Softening,
+        FastPath::FixedLe,
+        FastPath::Cold,
+    ];
 
     /// What the path supports.
     pub(crate) fn support(self) -> &'static Support {
@@ -37,6 +46,7 @@ impl FastPath {
             FastPath::Coulomb => &COULOMB,
             FastPath::Softening => &SOFTENING,
             FastPath::FixedLe => &FIXED_LE,
+            FastPath::Cold => &COLD,
         }
     }
 }
@@ -124,6 +134,25 @@ pub(crate) const FIXED_LE: Support = Support {
     modifiers: ModifierSupport::None,
 };
 
+/// The isothermal move calls the layer's material law (`material_base`) and the general
+/// stress update (`bristle::update`), so it implements every effect of the law; it keeps the
+/// bristle at the bulk temperature with no heat history, so not the temperature, and it
+/// takes the material without the modifiers' factors, so no formula or Rust effects.
+pub(crate) const COLD: Support = Support {
+    needs: &[],
+    implements: &[
+        Effect::Coulomb,
+        Effect::LayerElasticity,
+        Effect::VocePlasticity,
+        Effect::PressureDependence,
+        Effect::Transient,
+        Effect::ElasticUnloading,
+        Effect::SurfaceTimeFlash,
+    ],
+    params: ("none", |_| true),
+    modifiers: ModifierSupport::None,
+};
+
 impl Support {
     /// True if a configuration with the effects `on`, the resolved parameters `r` and
     /// modifiers (`any`: at least one; `local`: at least one of the bristle's local state)
@@ -152,6 +181,8 @@ pub(crate) struct Taken {
     pub softening: bool,
     /// [`FastPath::FixedLe`].
     pub fixed_le: bool,
+    /// [`FastPath::Cold`].
+    pub cold: bool,
 }
 
 impl Taken {
@@ -161,6 +192,7 @@ impl Taken {
             FastPath::Coulomb => self.coulomb,
             FastPath::Softening => self.softening,
             FastPath::FixedLe => self.fixed_le,
+            FastPath::Cold => self.cold,
         }
     }
 
@@ -170,6 +202,7 @@ impl Taken {
             FastPath::Coulomb => self.coulomb = on,
             FastPath::Softening => self.softening = on,
             FastPath::FixedLe => self.fixed_le = on,
+            FastPath::Cold => self.cold = on,
         }
     }
 }
@@ -181,7 +214,8 @@ mod tests {
     use crate::effects::CATALOGUE;
 
     /// The negative lists the engine had before the paths said what they support
-    /// (advance.rs `coulomb_path`, mod.rs `set_softening_solve`, advance.rs `fixed`).
+    /// (advance.rs `coulomb_path`, mod.rs `set_softening_solve`, advance.rs `fixed`,
+    /// advance.rs `move_bristle_with` for the isothermal move).
     fn before(path: FastPath, r: &Resolved, any: bool, local: bool) -> bool {
         use crate::bristle::Rule;
         match path {
@@ -204,6 +238,7 @@ mod tests {
                     && !local
             }
             FastPath::FixedLe => !any && (r.le_t == 0.0 || !r.temperature),
+            FastPath::Cold => !(r.temperature || any),
         }
     }
 
@@ -213,7 +248,7 @@ mod tests {
     #[test]
     fn the_supported_sets_take_the_paths_the_old_lists_took() {
         let n = CATALOGUE.len();
-        let mut taken = [0usize; 3];
+        let mut taken = [0usize; FastPath::ALL.len()];
         for bits in 0..(1u32 << n) {
             // the preset's coefficients (all >= 0, L_e's 0), then one changed at a time (the
             // negative ones only reachable in the resolved parameters: SPECS bounds them)

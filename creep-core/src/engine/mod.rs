@@ -29,8 +29,10 @@ mod bristle_move;
 mod fastpath;
 mod grid;
 pub mod io;
+mod kin;
 mod modifiers;
 mod softening;
+mod steady_coulomb;
 mod strip;
 
 pub use crate::hertz::patch_for;
@@ -209,7 +211,7 @@ pub struct Contact {
     np_cache_p0: Vec<f64>,
     /// Coulomb bounds of the lattice nodes, strips side by side (FASTSIM's steady march),
     /// for the peak pressure in `bound_cache_p0`.
-    bound_cache: Vec<[f64; advance::LANES]>,
+    bound_cache: Vec<[f64; steady_coulomb::LANES]>,
     bound_cache_p0: f64,
     /// Kernel factors of recent sub-step lengths (h, factors), per strip.
     fac_cache: Vec<Vec<(f64, thermal::StepFactors)>>,
@@ -226,7 +228,8 @@ pub struct Contact {
     /// ([`FastPath::Softening`]: a layer that only softens as it heats, the
     /// same-characteristic rule, no modifier of the local bristle state).
     softening_fast: bool,
-    /// The other fast paths this contact takes ([`FastPath::Coulomb`], [`FastPath::FixedLe`];
+    /// The other fast paths this contact takes ([`FastPath::Coulomb`], [`FastPath::FixedLe`],
+    /// [`FastPath::Cold`];
     /// module `fastpath` states what each supports).
     fast: fastpath::Taken,
 }

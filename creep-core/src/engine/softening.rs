@@ -14,7 +14,7 @@
 //! |u|, slip) take the general solve. Results agree with the general solve within its
 //! tolerance (1e-4 relative change of the softening factors; tested in `tests/physics`).
 
-use super::advance::Kin;
+use super::kin::Kin;
 use super::Contact;
 use crate::bristle::{BristleState, Material, Move, Regime, SofteningPath};
 use crate::material::{exp_fast, NodeP};
@@ -57,19 +57,20 @@ impl Contact {
         let path = mv.softening_path(&old, dtau, &m_h)?;
         // a weighted start stress (long continuous sub-steps) in its own instance, so that
         // the common moves run the unweighted code
-        let (mut ns, q) = self.solve_on_path::<W>(
+        let pm = PathMove {
+            kq_h: self.r.kq / k.h,
             k,
             np,
-            &m_h,
-            &old,
-            &mv,
-            [lxe, lye],
+            m_h: &m_h,
+            old: &old,
+            mv: &mv,
+            l: [lxe, lye],
             dtau,
-            path,
             theta,
             t_hist,
             self_c,
-        )?;
+        };
+        let (mut ns, q) = self.solve_on_path::<W>(&pm, path)?;
         ns.temp = t_hist + self_c * q;
         ns.q = q;
         *s = ns;
@@ -91,214 +92,304 @@ impl Contact {
     /// The new state and heat density of a move on a [`SofteningPath`] (see
     /// [`Contact::update_softening`]): the root of T = t_hist + self_c q(T) with q(T) the move's
     /// heat density as a scalar function of T (L_e independent of T), from the material `m_h`
-    /// at t_hist, and the law's branch evaluated there. `l` = (L_x + L_e, L_y + L_e), `dtau`
-    /// the elastic increment, `theta` the release weight (its reference is the stress at
-    /// t_hist, as in the general solve). None if q does not fall with T and the scalar
-    /// search fails, if an elastic bristle would yield at the root, or if the residual at the
-    /// root is not within the tolerance: the caller then runs the general solve.
-    #[allow(clippy::too_many_arguments)]
+    /// at t_hist, and the law's branch evaluated there (see [`PathMove`]). None if q does not
+    /// fall with T and the scalar search fails, if an elastic bristle would yield at the
+    /// root, or if the residual at the root is not within the tolerance: the caller then runs
+    /// the general solve.
     fn solve_on_path<const WEIGHTED: bool>(
         &self,
-        k: &Kin,
-        np: &NodeP,
-        m_h: &Material,
-        old: &BristleState,
-        mv: &Move,
-        l: [f64; 2],
-        dtau: [f64; 2],
+        pm: &PathMove,
         path: SofteningPath,
-        theta: f64,
-        t_hist: f64,
-        self_c: f64,
     ) -> Option<(BristleState, f64)> {
-        let kq_h = self.r.kq / k.h;
-        let du = mv.du();
-        let w = k.w_old;
-        // q of Eq. 4.29 as in the law's evaluation: tau_w . (du - L (tau_r - tau_old)) kq / h,
-        // tau_r the release stress, tau_w = tau - w (tau - tau_old) (w = 0 but for long
-        // continuous sub-steps)
-        let heat = |tau: [f64; 2], tau_r: [f64; 2]| {
-            let dux = du[0] - l[0] * (tau_r[0] - old.tau[0]);
-            let duy = du[1] - l[1] * (tau_r[1] - old.tau[1]);
-            let tw = if WEIGHTED {
-                super::advance::weighted_stress(tau, old.tau, w)
-            } else {
-                tau
-            };
-            (kq_h * (tw[0] * dux + tw[1] * duy)).max(0.0)
-        };
         let (tau, regime, q, t) = match path {
-            SofteningPath::Elastic => {
-                // the stress does not depend on T: q is constant, the root one step away;
-                // the bristle must still be elastic there
-                let tr = [old.tau[0] + dtau[0], old.tau[1] + dtau[1]];
-                let q = heat(tr, tr);
-                let t = t_hist + self_c * q;
-                let m = self.material_static(np, t);
-                let ntr = (tr[0] * tr[0] + tr[1] * tr[1]).sqrt();
-                if !(mv.t0() < m.tc1 && ntr <= m.tc1) {
-                    return None;
-                }
-                (tr, Regime::Elastic, q, t)
-            }
+            SofteningPath::Elastic => self.elastic_on_path::<WEIGHTED>(pm)?,
             SofteningPath::Hardening { t0, dn, dir } => {
-                // tau = t dir, t(T) from tau_c2(T) = tau_c2(t_hist) exp(-c2 (T - t_hist)),
-                // L_p(T) = L_p(t_hist) exp(c_p (T - t_hist)) (Eq. 4.3/4.4)
-                let (c2, cp) = (self.r.tc2_t, self.r.lp_t);
-                let e_h = (-dn / m_h.lp).exp();
-                let stress = |dtk: f64| {
-                    let f = exp_fast(-c2 * dtk);
-                    let tc2 = m_h.tc2 * f;
-                    if t0 >= tc2 {
-                        return (tc2, -c2 * tc2, true, tc2);
-                    }
-                    let (lp, e) = if cp == 0.0 {
-                        (m_h.lp, e_h)
-                    } else {
-                        let lp = m_h.lp
-                            * if cp == c2 {
-                                1.0 / f
-                            } else {
-                                exp_fast(cp * dtk)
-                            };
-                        (lp, exp_fast(-dn / lp))
-                    };
-                    // d/dT of tc2 - (tc2 - t0) e, e = exp(-dn / L_p)
-                    let de = e * dn * cp / lp;
-                    (
-                        tc2 - (tc2 - t0) * e,
-                        -c2 * tc2 * (1.0 - e) - (tc2 - t0) * de,
-                        false,
-                        tc2,
-                    )
-                };
-                // at t_hist (no exponential): the law's value there
-                let (t_h, dt_h) = if t0 >= m_h.tc2 {
-                    (m_h.tc2, -c2 * m_h.tc2)
-                } else {
-                    let de = e_h * dn * cp / m_h.lp;
-                    (
-                        m_h.tc2 - (m_h.tc2 - t0) * e_h,
-                        -c2 * m_h.tc2 * (1.0 - e_h) - (m_h.tc2 - t0) * de,
-                    )
-                };
-                // along dir: q = a t - b t^2 + c with tau_r = t_h + theta (t - t_h) (c = 0
-                // unless the start stress is weighted, w > 0: then tau_w = (1 - w) t dir +
-                // w tau_old scales the first two terms by 1 - w and adds w tau_old . slip)
-                let bb = kq_h * (l[0] * dir[0] * dir[0] + l[1] * dir[1] * dir[1]);
-                let a = kq_h
-                    * (dir[0] * (du[0] + l[0] * old.tau[0]) + dir[1] * (du[1] + l[1] * old.tau[1]))
-                    - bb * t_h * (1.0 - theta);
-                let b = bb * theta;
-                let (a, b, c) = if !WEIGHTED {
-                    (a, b, 0.0)
-                } else {
-                    let o = old.tau;
-                    let dd = kq_h * (l[0] * o[0] * dir[0] + l[1] * o[1] * dir[1]);
-                    let c0 = kq_h * (o[0] * (du[0] + l[0] * o[0]) + o[1] * (du[1] + l[1] * o[1]))
-                        - dd * t_h * (1.0 - theta);
-                    ((1.0 - w) * a - w * dd * theta, (1.0 - w) * b, w * c0)
-                };
-                // the last temperature evaluated and the law there: (T, t, dt/dT, sliding, tau_c2)
-                let last = std::cell::Cell::new((t_hist, t_h, dt_h, t0 >= m_h.tc2, m_h.tc2));
-                let q_of = |t_k: f64| {
-                    let (t, dt, sl, tc2) = stress(t_k - t_hist);
-                    last.set((t_k, t, dt, sl, tc2));
-                    let q = a * t - b * t * t;
-                    let q = if WEIGHTED { q + c } else { q };
-                    if q <= 0.0 {
-                        (0.0, 0.0)
-                    } else {
-                        (q, (a - 2.0 * b * t) * dt)
-                    }
-                };
-                let q_h = a * t_h - b * t_h * t_h;
-                let q_h = if WEIGHTED { q_h + c } else { q_h };
-                let (q_h, dq_h) = if q_h <= 0.0 {
-                    (0.0, 0.0)
-                } else {
-                    (q_h, (a - 2.0 * b * t_h) * dt_h)
-                };
-                // g(T) = t_hist + self_c q(T) - T falls on the whole bracket if q does, or, with
-                // L_p independent of T, if self_c dq/dT < 1/2 at t_hist: there
-                // |dq/dT| = c2 t |a - 2 b t| (sliding) or c2 tau_c2 (1 - e) |a - 2 b t|
-                // (hardening) is largest, both factors falling with T
-                let (root, sliding, t) = if dq_h <= 0.0 || (cp == 0.0 && self_c * dq_h < 0.5) {
-                    let q_max = if dq_h <= 0.0 || b <= 0.0 {
-                        q_h
-                    } else {
-                        // the vertex of a t - b t^2 + c bounds q where it rises
-                        let v = a * a / (4.0 * b);
-                        if WEIGHTED {
-                            v + c
-                        } else {
-                            v
-                        }
-                    };
-                    let (root, _) = thermal::solve_monotone(
-                        t_hist,
-                        self_c,
-                        (q_h, dq_h),
-                        q_max,
-                        self.t_tol,
-                        q_of,
-                    )?;
-                    // the stress at the root: extrapolated over the last step (shorter than
-                    // the tolerance: tau_c2 changes by less than 1e-10 of itself over it)
-                    // unless the bristle may cross tau_c2 = t0 on it
-                    let (tl, t_l, dt_l, sl, tc2_l) = last.get();
-                    if (t0 - tc2_l).abs() > 2e-4 * tc2_l {
-                        (root, sl, t_l + dt_l * (root - tl))
-                    } else {
-                        let (t, _, sl, _) = stress(root - t_hist);
-                        (root, sl, t)
-                    }
-                } else {
-                    // q rises with T (the softening's elastic release heats more than the lower
-                    // stress saves) and no bound proves a single root: the general search for
-                    // the smallest root, on the scalar law
-                    let ((), q) = thermal::solve_self_heating(
-                        t_hist,
-                        self_c,
-                        q_h,
-                        (),
-                        old.q,
-                        self.t_tol,
-                        |t| ((), q_of(t).0),
-                        |_, _, _| Some(()),
-                    );
-                    let root = t_hist + self_c * q;
-                    let (t, _, sl, _) = stress(root - t_hist);
-                    (root, sl, t)
-                };
-                // the span closes at one temperature and stays closed above it: open at the
-                // root means open on the whole path from t_hist
-                if self.r.span_may_close() && self.span_closed(np, root) {
-                    return None;
-                }
-                let tau = [t * dir[0], t * dir[1]];
-                let r = [t_h * dir[0], t_h * dir[1]];
-                let tau_r = [
-                    r[0] + theta * (tau[0] - r[0]),
-                    r[1] + theta * (tau[1] - r[1]),
-                ];
-                let regime = if sliding {
-                    Regime::Sliding
-                } else {
-                    Regime::Plastic
-                };
-                (tau, regime, heat(tau, tau_r), root)
+                self.hardening_on_path::<WEIGHTED>(pm, t0, dn, dir)?
             }
         };
-        if (t_hist + self_c * q - t).abs() >= self.t_tol {
+        if (pm.t_hist + pm.self_c * q - t).abs() >= self.t_tol {
             return None;
         }
         let ns = BristleState {
-            u: mv.u1(),
+            u: pm.mv.u1(),
             tau,
             regime,
-            ..*old
+            ..*pm.old
         };
         Some((ns, q))
+    }
+
+    /// An elastic move: the stress does not depend on T, so q is constant and the root one
+    /// step away; None if the bristle would no longer be elastic there. Returns (tau,
+    /// regime, q, T).
+    fn elastic_on_path<const WEIGHTED: bool>(&self, pm: &PathMove) -> Option<OnPath> {
+        let (old, dtau) = (pm.old, pm.dtau);
+        let tr = [old.tau[0] + dtau[0], old.tau[1] + dtau[1]];
+        let q = pm.heat::<WEIGHTED>(tr, tr);
+        let t = pm.t_hist + pm.self_c * q;
+        let m = self.material_static(pm.np, t);
+        let ntr = (tr[0] * tr[0] + tr[1] * tr[1]).sqrt();
+        if !(pm.mv.t0() < m.tc1 && ntr <= m.tc1) {
+            return None;
+        }
+        Some((tr, Regime::Elastic, q, t))
+    }
+
+    /// A hardening or sliding move along `dir` from the stress `t0` over the plastic slip
+    /// `dn`: the root temperature of the heat of the law's stress t(T), and the stress,
+    /// regime and heat density there; None where the general solve must run. Returns (tau,
+    /// regime, q, T).
+    fn hardening_on_path<const WEIGHTED: bool>(
+        &self,
+        pm: &PathMove,
+        t0: f64,
+        dn: f64,
+        dir: [f64; 2],
+    ) -> Option<OnPath> {
+        let law = HardeningLaw::new(self, pm.m_h, t0, dn);
+        let (t_h, dt_h) = law.at_hist();
+        let coef = pm.heat_along::<WEIGHTED>(dir, t_h);
+        let (root, sliding, t) = self.hardening_root::<WEIGHTED>(pm, &law, coef, (t_h, dt_h))?;
+        // the span closes at one temperature and stays closed above it: open at the
+        // root means open on the whole path from t_hist
+        if self.r.span_may_close() && self.span_closed(pm.np, root) {
+            return None;
+        }
+        let theta = pm.theta;
+        let tau = [t * dir[0], t * dir[1]];
+        let r = [t_h * dir[0], t_h * dir[1]];
+        let tau_r = [
+            r[0] + theta * (tau[0] - r[0]),
+            r[1] + theta * (tau[1] - r[1]),
+        ];
+        let regime = if sliding {
+            Regime::Sliding
+        } else {
+            Regime::Plastic
+        };
+        Some((tau, regime, pm.heat::<WEIGHTED>(tau, tau_r), root))
+    }
+
+    /// The root T of t_hist + self_c q(T) = T for the heat q = a t - b t^2 + c (`coef`) of the
+    /// law's stress t(T), from t and dt/dT at t_hist (`at_hist`); returns (T, sliding, t at
+    /// T), or None if the scalar search fails.
+    fn hardening_root<const WEIGHTED: bool>(
+        &self,
+        pm: &PathMove,
+        law: &HardeningLaw,
+        (a, b, c): (f64, f64, f64),
+        (t_h, dt_h): (f64, f64),
+    ) -> Option<(f64, bool, f64)> {
+        let (t_hist, self_c, t0) = (pm.t_hist, pm.self_c, law.t0);
+        let m_h = law.m_h;
+        // the last temperature evaluated and the law there: (T, t, dt/dT, sliding, tau_c2)
+        let last = std::cell::Cell::new((t_hist, t_h, dt_h, t0 >= m_h.tc2, m_h.tc2));
+        let q_of = |t_k: f64| {
+            let (t, dt, sl, tc2) = law.stress(t_k - t_hist);
+            last.set((t_k, t, dt, sl, tc2));
+            let q = a * t - b * t * t;
+            let q = if WEIGHTED { q + c } else { q };
+            if q <= 0.0 {
+                (0.0, 0.0)
+            } else {
+                (q, (a - 2.0 * b * t) * dt)
+            }
+        };
+        let q_h = a * t_h - b * t_h * t_h;
+        let q_h = if WEIGHTED { q_h + c } else { q_h };
+        let (q_h, dq_h) = if q_h <= 0.0 {
+            (0.0, 0.0)
+        } else {
+            (q_h, (a - 2.0 * b * t_h) * dt_h)
+        };
+        // g(T) = t_hist + self_c q(T) - T falls on the whole bracket if q does, or, with
+        // L_p independent of T, if self_c dq/dT < 1/2 at t_hist: there
+        // |dq/dT| = c2 t |a - 2 b t| (sliding) or c2 tau_c2 (1 - e) |a - 2 b t|
+        // (hardening) is largest, both factors falling with T
+        if dq_h <= 0.0 || (law.cp == 0.0 && self_c * dq_h < 0.5) {
+            let q_max = if dq_h <= 0.0 || b <= 0.0 {
+                q_h
+            } else {
+                // the vertex of a t - b t^2 + c bounds q where it rises
+                let v = a * a / (4.0 * b);
+                if WEIGHTED {
+                    v + c
+                } else {
+                    v
+                }
+            };
+            let (root, _) =
+                thermal::solve_monotone(t_hist, self_c, (q_h, dq_h), q_max, self.t_tol, q_of)?;
+            // the stress at the root: extrapolated over the last step (shorter than
+            // the tolerance: tau_c2 changes by less than 1e-10 of itself over it)
+            // unless the bristle may cross tau_c2 = t0 on it
+            let (tl, t_l, dt_l, sl, tc2_l) = last.get();
+            if (t0 - tc2_l).abs() > 2e-4 * tc2_l {
+                Some((root, sl, t_l + dt_l * (root - tl)))
+            } else {
+                let (t, _, sl, _) = law.stress(root - t_hist);
+                Some((root, sl, t))
+            }
+        } else {
+            // q rises with T (the softening's elastic release heats more than the lower
+            // stress saves) and no bound proves a single root: the general search for
+            // the smallest root, on the scalar law
+            let ((), q) = thermal::solve_self_heating(
+                t_hist,
+                self_c,
+                q_h,
+                (),
+                pm.old.q,
+                self.t_tol,
+                |t| ((), q_of(t).0),
+                |_, _, _| Some(()),
+            );
+            let root = t_hist + self_c * q;
+            let (t, _, sl, _) = law.stress(root - t_hist);
+            Some((root, sl, t))
+        }
+    }
+}
+
+/// A move's stress, regime, heat density (W/m^2) and temperature (degC) on its path.
+type OnPath = ([f64; 2], Regime, f64, f64);
+
+/// A move on a [`SofteningPath`] as the scalar solve sees it: the bristle before it, the move,
+/// and the law's data at the temperature of the heat history.
+struct PathMove<'a> {
+    /// kq / h of the sub-step.
+    kq_h: f64,
+    k: &'a Kin,
+    np: &'a NodeP,
+    /// The material at t_hist (with the operating point's formula and custom factors).
+    m_h: &'a Material,
+    old: &'a BristleState,
+    mv: &'a Move,
+    /// (L_x + L_e, L_y + L_e), m/Pa.
+    l: [f64; 2],
+    /// The elastic stress increment (Eq. 4.21), Pa.
+    dtau: [f64; 2],
+    /// The release weight (its reference is the stress at t_hist, as in the general solve).
+    theta: f64,
+    /// Temperature of the heat history, degC, and the flash temperature per heat density of
+    /// the sub-step's own interval.
+    t_hist: f64,
+    self_c: f64,
+}
+
+impl PathMove<'_> {
+    /// q of Eq. 4.29 as in the law's evaluation: tau_w . (du - L (tau_r - tau_old)) kq / h,
+    /// tau_r the release stress, tau_w = tau - w (tau - tau_old) (w = 0 but for long
+    /// continuous sub-steps).
+    #[inline]
+    fn heat<const WEIGHTED: bool>(&self, tau: [f64; 2], tau_r: [f64; 2]) -> f64 {
+        let (du, l, old) = (self.mv.du(), self.l, self.old);
+        let dux = du[0] - l[0] * (tau_r[0] - old.tau[0]);
+        let duy = du[1] - l[1] * (tau_r[1] - old.tau[1]);
+        let tw = if WEIGHTED {
+            super::kin::weighted_stress(tau, old.tau, self.k.w_old)
+        } else {
+            tau
+        };
+        (self.kq_h * (tw[0] * dux + tw[1] * duy)).max(0.0)
+    }
+
+    /// The heat density along `dir` as q = a t - b t^2 + c in the stress t, with the release
+    /// stress tau_r = t_h + theta (t - t_h): returns (a, b, c) (c = 0 unless the start stress
+    /// is weighted, w > 0: then tau_w = (1 - w) t dir + w tau_old scales the first two terms
+    /// by 1 - w and adds w tau_old . slip).
+    fn heat_along<const WEIGHTED: bool>(&self, dir: [f64; 2], t_h: f64) -> (f64, f64, f64) {
+        let (kq_h, l, du, old, theta) = (self.kq_h, self.l, self.mv.du(), self.old, self.theta);
+        let w = self.k.w_old;
+        let bb = kq_h * (l[0] * dir[0] * dir[0] + l[1] * dir[1] * dir[1]);
+        let a = kq_h
+            * (dir[0] * (du[0] + l[0] * old.tau[0]) + dir[1] * (du[1] + l[1] * old.tau[1]))
+            - bb * t_h * (1.0 - theta);
+        let b = bb * theta;
+        if !WEIGHTED {
+            (a, b, 0.0)
+        } else {
+            let o = old.tau;
+            let dd = kq_h * (l[0] * o[0] * dir[0] + l[1] * o[1] * dir[1]);
+            let c0 = kq_h * (o[0] * (du[0] + l[0] * o[0]) + o[1] * (du[1] + l[1] * o[1]))
+                - dd * t_h * (1.0 - theta);
+            ((1.0 - w) * a - w * dd * theta, (1.0 - w) * b, w * c0)
+        }
+    }
+}
+
+/// The law's stress on a hardening path as a function of T: tau = t dir, t(T) from
+/// tau_c2(T) = tau_c2(t_hist) exp(-c2 (T - t_hist)), L_p(T) = L_p(t_hist) exp(c_p (T -
+/// t_hist)) (Eq. 4.3/4.4).
+struct HardeningLaw<'a> {
+    /// The material at t_hist.
+    m_h: &'a Material,
+    /// |tau| before the move, Pa, and the plastic slip |u1| - |u0|, m.
+    t0: f64,
+    dn: f64,
+    /// Temperature coefficients of tau_c2 and L_p, 1/degC.
+    c2: f64,
+    cp: f64,
+    /// exp(-dn / L_p) at t_hist.
+    e_h: f64,
+}
+
+impl<'a> HardeningLaw<'a> {
+    /// The law of the contact's layer from the material at t_hist.
+    fn new(c: &Contact, m_h: &'a Material, t0: f64, dn: f64) -> Self {
+        let (c2, cp) = (c.r.tc2_t, c.r.lp_t);
+        let e_h = (-dn / m_h.lp).exp();
+        Self {
+            m_h,
+            t0,
+            dn,
+            c2,
+            cp,
+            e_h,
+        }
+    }
+
+    /// (t, dt/dT, sliding, tau_c2) at T = t_hist + `dtk`.
+    #[inline]
+    fn stress(&self, dtk: f64) -> (f64, f64, bool, f64) {
+        let (m_h, t0, dn, c2, cp) = (self.m_h, self.t0, self.dn, self.c2, self.cp);
+        let f = exp_fast(-c2 * dtk);
+        let tc2 = m_h.tc2 * f;
+        if t0 >= tc2 {
+            return (tc2, -c2 * tc2, true, tc2);
+        }
+        let (lp, e) = if cp == 0.0 {
+            (m_h.lp, self.e_h)
+        } else {
+            let lp = m_h.lp
+                * if cp == c2 {
+                    1.0 / f
+                } else {
+                    exp_fast(cp * dtk)
+                };
+            (lp, exp_fast(-dn / lp))
+        };
+        // d/dT of tc2 - (tc2 - t0) e, e = exp(-dn / L_p)
+        let de = e * dn * cp / lp;
+        (
+            tc2 - (tc2 - t0) * e,
+            -c2 * tc2 * (1.0 - e) - (tc2 - t0) * de,
+            false,
+            tc2,
+        )
+    }
+
+    /// (t, dt/dT) at t_hist itself, without an exponential: the law's value there.
+    fn at_hist(&self) -> (f64, f64) {
+        let (m_h, t0, dn, c2, cp, e_h) = (self.m_h, self.t0, self.dn, self.c2, self.cp, self.e_h);
+        if t0 >= m_h.tc2 {
+            (m_h.tc2, -c2 * m_h.tc2)
+        } else {
+            let de = e_h * dn * cp / m_h.lp;
+            (
+                m_h.tc2 - (m_h.tc2 - t0) * e_h,
+                -c2 * m_h.tc2 * (1.0 - e_h) - (m_h.tc2 - t0) * de,
+            )
+        }
     }
 }

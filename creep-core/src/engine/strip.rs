@@ -267,7 +267,7 @@ impl Contact {
     /// Kinematics of a move over the strip's part `p` of the current cell plus `d` (m) more
     /// at the current inputs: the creepages weighted by distance (the rigid slip and the
     /// elastic increment of Eq. 4.21 are linear in them), the time summed.
-    pub(super) fn part_kin(&self, p: &super::Partial, d: f64) -> super::advance::Kin {
+    pub(super) fn part_kin(&self, p: &super::Partial, d: f64) -> super::kin::Kin {
         if p.d == 0.0 {
             // nothing of the cell travelled before: the current inputs as they are
             return self.kin(self.time_of(d), d);

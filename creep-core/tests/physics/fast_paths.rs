@@ -1,7 +1,7 @@
 //! Each fast path against the general path, with every catalogue effect switched on in turn: the path is either not taken or agrees with the general one.
 
 use super::common::{preset, with_grid};
-use creep_core::effects::CATALOGUE;
+use creep_core::effects::{Effect, CATALOGUE};
 use creep_core::engine::FastPath;
 use creep_core::{Config, Contact, Inputs, Outputs};
 
@@ -18,6 +18,13 @@ fn base(path: FastPath) -> (Config, Tolerance) {
         // L_e once per move is the same number as L_e per trial temperature (divided by a
         // temperature factor of exactly 1): bit for bit
         FastPath::FixedLe => (preset("table4.1"), Tolerance::Exact),
+        // the isothermal move is the general move's material and stress update without the
+        // temperature solve: bit for bit, on the preset without its temperature
+        FastPath::Cold => {
+            let mut cfg = preset("table4.1");
+            cfg.effects.remove(Effect::Temperature);
+            (cfg, Tolerance::Exact)
+        }
     }
 }
 

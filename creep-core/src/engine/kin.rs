@@ -1,0 +1,103 @@
+//! The kinematics of one sub-step of a strip (Eq. 4.16, 4.21): its length, creepages, flexibilities and heat-flow factors, shared by every kind of bristle move.
+
+use super::{Contact, V_STANDSTILL};
+use crate::thermal;
+
+/// Per-sub-step kinematic context of one strip.
+pub(super) struct Kin {
+    pub(super) h: f64,
+    pub(super) dist: f64,
+    pub(super) cx: f64,
+    pub(super) cy: f64,
+    pub(super) cs: f64,
+    pub(super) lx: f64,
+    pub(super) ly: f64,
+    pub(super) ls: f64,
+    pub(super) heat: bool,
+    pub(super) alpha_c: f64,
+    pub(super) t_bulk: f64,
+    /// alpha_c 2 sqrt(h): the flash temperature per heat density of the sub-step's own
+    /// interval (Eq. 4.35's first term), 0 without heat flow.
+    pub(super) self_c: f64,
+    /// Weight of the sub-step's start stress in its dissipation (Eq. 4.29): 0 for moves of
+    /// at most one cell (the march and the cell schemes: the stress at the end); for a
+    /// continuous sub-step of n > 1 cells (1 - 1/n)/2, so that it dissipates what n one-cell
+    /// moves would (to second order), see [`Contact::advance_continuous`].
+    pub(super) w_old: f64,
+}
+
+impl Kin {
+    /// The rigid slip of a move whose midpoint is at (x, y) in the contact frame, m
+    /// (Eq. 4.16: du = v h (c_x - c_s y, c_y + c_s x), with v h the distance moved).
+    #[inline]
+    pub(super) fn rigid_slip(&self, [x, y]: [f64; 2]) -> [f64; 2] {
+        let d = self.dist;
+        [d * (self.cx - self.cs * y), d * (self.cy + self.cs * x)]
+    }
+
+    /// The flexibilities L_x + L_e, L_y + L_e (m/Pa) for the layer's flexibility `le` and the
+    /// elastic stress increment of the move at (x, y), Pa (Eq. 4.21).
+    #[inline]
+    pub(super) fn flex(&self, le: f64, [x, y]: [f64; 2]) -> (f64, f64, [f64; 2]) {
+        let d = self.dist;
+        let lxe = self.lx + le;
+        let lye = self.ly + le;
+        let lse = self.ls + le;
+        let dtau = [
+            d * (self.cx / lxe - self.cs * y / lse),
+            d * (self.cy / lye + self.cs * x / lse),
+        ];
+        (lxe, lye, dtau)
+    }
+}
+
+/// The stress that multiplies a long continuous sub-step's plastic slip in its
+/// dissipation (Eq. 4.29): `new - w (new - old)`, w = [`Kin::w_old`] > 0. (Moves of at most
+/// one cell take `new` itself: they run the instance without the weight.)
+#[inline]
+pub(super) fn weighted_stress(new: [f64; 2], old: [f64; 2], w: f64) -> [f64; 2] {
+    [
+        new[0] - w * (new[0] - old[0]),
+        new[1] - w * (new[1] - old[1]),
+    ]
+}
+
+impl Contact {
+    /// Kinematic/thermal context for a sub-step of duration `h` moving distance `dist`.
+    pub(super) fn kin(&self, h: f64, dist: f64) -> Kin {
+        let i = &self.inputs;
+        let heat = i.v > V_STANDSTILL && h > 0.0;
+        let vw = i.v * (1.0 + i.cx).abs();
+        // with surface_time_flash alpha sqrt(v / v_w): Eq. 4.34 over the wheel surface's
+        // time x / v_w, written in the layer's time x / v (finite for v_w -> 0)
+        let partition = if self.r.surface_time {
+            thermal::surface_time_partition
+        } else {
+            thermal::heat_partition
+        };
+        let alpha = partition(
+            vw,
+            i.v,
+            self.r.lambda_w,
+            self.r.kappa_w,
+            self.r.lambda_r,
+            self.r.kappa_r,
+        );
+        let alpha_c = alpha * thermal::flash_factor(self.r.lambda_w, self.r.kappa_w);
+        Kin {
+            h,
+            dist,
+            cx: i.cx,
+            cy: i.cy,
+            cs: i.spin,
+            lx: self.flex.0,
+            ly: self.flex.1,
+            ls: self.flex.2,
+            heat,
+            alpha_c,
+            t_bulk: i.t_bulk,
+            self_c: if heat { alpha_c * 2.0 * h.sqrt() } else { 0.0 },
+            w_old: 0.0,
+        }
+    }
+}
