@@ -59,21 +59,14 @@ const TABLE41_OUTPUTS: [f64; 13] = [
     873541045.238297,
 ];
 
-/// How far a fixture's outputs (and Polach's continuation) may be from a fresh run of this
-/// build at the same instant. Polach has not changed since the fixtures were written: 1e-5
-/// (its tolerance change moved nothing). The bristle model has: the temperature solve's
-/// tolerance (issue 25, up to 6e-7 here), the whole-cell commit (issue 24: this 8 x 3 grid,
-/// whose 1.9 mm cells each step of 1 mm cuts, is 2.0 % off the old cut-cell value at the
-/// fixture's instant) and the cold crossing (issue 24, step 5). These are discretisation
-/// changes, not reader errors: the reader is checked bit for bit above, by re-saving, and by
-/// the bit-for-bit agreement one transit time after loading.
-fn tolerance(name: &str) -> f64 {
-    if name == "polach" {
-        1e-5
-    } else {
-        3e-2
-    }
-}
+/// How far Polach's fixture may be from a fresh run of this build: it has not changed since
+/// the fixtures were written, 1e-5 (its tolerance change moved nothing). The bristle model
+/// has no such bound: its discretisation changed since (the temperature solve's tolerance,
+/// issue 25; the whole-cell commit, the cold crossing and the Gauss-Legendre strips, issue
+/// 24: on this 8 x 3 grid the strips moved, 6.4 % in F_x at the fixture's instant). Its
+/// reader is checked bit for bit instead: the outputs the fixture holds, re-saving, and the
+/// agreement with a fresh run one transit time after loading.
+const POLACH_TOL: f64 = 1e-5;
 
 #[test]
 fn version_2_states_load_and_continue() {
@@ -91,12 +84,14 @@ fn version_2_states_load_and_continue() {
                 "{name}: the outputs the fixture holds"
             );
         }
-        close(
-            &format!("{name}: outputs"),
-            &old.outputs(),
-            &now.outputs(),
-            tolerance(name),
-        );
+        if name == "polach" {
+            close(
+                &format!("{name}: outputs"),
+                &old.outputs(),
+                &now.outputs(),
+                POLACH_TOL,
+            );
+        }
         // what loaded is saved again in the current format, reads back and continues bit
         // for bit
         let again = old.save_state();
@@ -119,7 +114,7 @@ fn version_2_states_load_and_continue() {
             if k - 7 + 1 >= transit {
                 assert_eq!(a, b, "{name}: step {k}, one transit time after loading");
             } else if name == "polach" {
-                close(&format!("{name}: step {k}"), &a, &b, tolerance(name));
+                close(&format!("{name}: step {k}"), &a, &b, POLACH_TOL);
             }
             assert_eq!(b, c, "{name}: step {k} after re-saving");
         }
