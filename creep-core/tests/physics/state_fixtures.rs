@@ -1,4 +1,4 @@
-//! Model states serialized by an earlier build (format version 2, written on branch issue-27 from main at e5dece1, before the state stored its values by name) still load, agree bit for bit with a fresh run of this build once the bristles they hold have left the contact, and continue bit for bit once saved again in the current format.
+//! Model states serialized by an earlier build (format version 2, written on branch issue-27 from main at e5dece1, before the state stored its values by name) still load, agree with a fresh run of this build within the ripple of its lattice once the bristles they hold have left the contact, and continue bit for bit once saved again in the current format.
 use crate::common::*;
 use creep_core::{Config, Grid, Inputs, Model};
 
@@ -99,22 +99,35 @@ fn version_2_states_load_and_continue() {
         third.load_state(&again).expect("the re-saved state loads");
         assert_eq!(third.outputs(), old.outputs(), "{name}: re-saved outputs");
         // A fresh run of this build and the continuation of the old build's state see the
-        // same inputs; once every bristle that the old build placed has left the contact
-        // (one transit time 2a/v, plus the step that completes the last cell), nothing of
-        // the old state is left and the two agree bit for bit. Before that they differ by
-        // the discretisation changes since the fixture was written (up to 3.6 % in P_fric
-        // on this 8 x 3 grid at the first step); Polach has not changed and agrees from
-        // the first step.
+        // same inputs. Polach has not changed and agrees from the first step. The bristle
+        // model's continuation keeps the fixture's lattice: its strips' cells were cut for
+        // equal strips, and since issue 24's step 6 the strips sit at the Gauss-Legendre
+        // nodes with other lengths, so its nodes sit elsewhere along the strips than a fresh
+        // run's, and the two never agree bit for bit (they did before step 6, one transit
+        // time after loading). Once every bristle the old build placed has left the contact
+        // (one transit time 2a/v, plus the step that completes the last cell) they differ
+        // by the ripple of this 8 x 3 lattice only: measured at most 0.6 % in F_x, 1.6 % in
+        // T_mean, 3.0 % in P_fric, 0.045 in an area fraction; a value read into the wrong
+        // place would be off by far more than the 5 % (0.1) checked.
         let o = now.outputs();
         let transit = (2.0 * o.a / (input(0).v * 2e-4)).ceil() as usize + 1;
         for k in 7..7 + transit + 3 {
             let a = now.step(2e-4, &input(k)).expect("step");
             let b = old.step(2e-4, &input(k)).expect("step");
             let c = third.step(2e-4, &input(k)).expect("step");
-            if k - 7 + 1 >= transit {
-                assert_eq!(a, b, "{name}: step {k}, one transit time after loading");
-            } else if name == "polach" {
+            if name == "polach" {
                 close(&format!("{name}: step {k}"), &a, &b, POLACH_TOL);
+            } else if k - 7 + 1 >= transit {
+                let (x, y) = (a.to_array(), b.to_array());
+                // 7-9: the area fractions
+                for (n, (p, q)) in x.iter().zip(y).enumerate() {
+                    let ok = if (7..=9).contains(&n) {
+                        (p - q).abs() <= 0.1
+                    } else {
+                        (p - q).abs() <= 5e-2 * p.abs().max(q.abs()) + 1e-9
+                    };
+                    assert!(ok, "{name}: step {k}, output {n}: {p} vs {q}");
+                }
             }
             assert_eq!(b, c, "{name}: step {k} after re-saving");
         }

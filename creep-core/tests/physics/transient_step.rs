@@ -30,12 +30,14 @@ fn step_0p1_to_1_percent_settles_after_2a_over_v() {
     }
     let f_half = at_half.unwrap();
     // "measurably away": at a/v half the bristles still carry the old creepage, so f is
-    // below the new steady value by far more than it deviates once settled. (The converged
-    // gap is 0.52 % on 320x21 and 640x41; a fixed 0.5 % threshold sat within the grid error
-    // of it, so the test compares with the settled deviation instead.)
+    // below the new steady value by more than half the 0.5 % band that counts as settled,
+    // and by several times what it deviates once settled (the lattice's ripple). The
+    // converged gap is 0.52 % (320x21 and 640x41, 0.01 ms steps); a fixed 0.5 % threshold
+    // sat within the default grid's error of it (0.48 % with the Gauss-Legendre strips of
+    // issue 24 step 6, 0.51 % before), so the test no longer asks for it.
     let half_dev = (target - f_half) / target;
     assert!(
-        half_dev > 10.0 * settled_dev && half_dev > 0.002,
+        half_dev > 0.0025 && half_dev > 4.0 * settled_dev,
         "at t = a/v the response must still be transient: {f_half} vs {target} \
          ({:.3} % below it; settled within {:.3} %)",
         half_dev * 100.0,
