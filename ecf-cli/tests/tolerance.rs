@@ -61,11 +61,7 @@ fn tol_runs_on_the_grid_and_scheme_the_table_gives_and_says_which() {
 #[test]
 fn explicit_grid_and_scheme_override_tol() {
     let loose = tolerance::choose(0.5, 5.0, Some(1e-3), Filter::default()).expect("choice");
-    assert_ne!(
-        (loose.nx, loose.ny),
-        (80, 7),
-        "the test needs another grid"
-    );
+    assert_ne!((loose.nx, loose.ny), (80, 7), "the test needs another grid");
     let (_, plain, _) = step(&["--grid", "80x7"]);
     let (code, out, err) = step(&["--tol", "0.5", "--grid", "80x7"]);
     assert_eq!(code, 0, "{err}");
