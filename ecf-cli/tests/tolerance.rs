@@ -1,19 +1,8 @@
 //! `--tol`: the grid and scheme chosen from creep-core's accuracy table, printed on stderr; explicit --grid and --scheme override it; bad tolerances are refused.
 use creep_core::engine::Scheme;
 use creep_core::tolerance::{self, Filter};
-use std::process::Command;
-
-fn ecf(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ecf"))
-        .args(args)
-        .output()
-        .expect("run ecf");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
+mod common;
+use common::ecf;
 
 /// A short dry creepage step at 5 m/s with 1 ms steps, plus `extra` flags.
 fn step(extra: &[&str]) -> (i32, String, String) {
