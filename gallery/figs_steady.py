@@ -163,10 +163,17 @@ def fig4_9_checks(n, S):
     c = n["cases"]
     a, b, cc, d = c["0.001"], c["0.01"], c["0.05"], c["0.3"]
     return [
+        # The rise at 0.1 % sits at the trailing-edge node and is not converged on the
+        # gallery's grid (table4.1, 20 m/s: 31.4 degC on 80 cells, 35.5 degC on 1280; with
+        # the equal strips before issue 24's step 6, 25.8 and 34.3 degC). An absolute bound
+        # of 10 K held only through that under-resolution; "very low" is judged against the
+        # rise at 30 % creepage instead.
         Check("4.9-low-temperature-at-0.1pct",
               "at c_x = 0.1 % the temperature is very low and has no significant influence",
-              f"T_max = {a['T_max']:.1f} degC (T_B = 20 degC; assert rise < 10 K)",
-              a["T_max"] - 20.0 < 10.0),
+              f"T_max = {a['T_max']:.1f} degC (T_B = 20 degC); rise {a['T_max'] - 20.0:.1f} K, "
+              f"{100 * (a['T_max'] - 20.0) / (d['T_max'] - 20.0):.1f} % of the rise at 30 % "
+              f"({d['T_max'] - 20.0:.0f} K; assert < 5 %)",
+              a["T_max"] - 20.0 < 0.05 * (d["T_max"] - 20.0)),
         Check("4.9-elastic-dominated-at-0.1pct",
               "at c_x = 0.1 % the stress is dominated by the elasticity of wheel, rail and layer; only near the trailing edge does the layer harden",
               f"elastic-plastic transition at x = {a['x_transition_mm']:.2f} mm (trailing half: assert x < 0); plastic share along y = 0 {100 * a['plastic_share']:.0f} % (assert < 50 %)",

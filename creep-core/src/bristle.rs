@@ -334,7 +334,8 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
             let t = (m.tc2 - (m.tc2 - tc1c) * (-s1 / m.lp).exp())
                 .max(m.tc1)
                 .min(ntr);
-            s.tau = [t * dir[0], t * dir[1]];
+            let d = crossing_dir(s.tau, dtau, lam, dir);
+            s.tau = [t * d[0], t * d[1]];
             s.regime = Regime::Plastic;
         }
         return;
@@ -409,8 +410,39 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
         let uy = [u0[0] + lam * du[0], u0[1] + lam * du[1]];
         let s1 = (n1 - norm(uy)).max(0.0);
         let t = voce(m, s1);
-        s.tau = [t * dir[0], t * dir[1]];
+        let d = crossing_dir(s.tau, dtau, lam, dir);
+        s.tau = [t * d[0], t * d[1]];
         s.regime = Regime::Plastic;
+    }
+}
+
+/// The direction of the stress at the end of a move in which an elastic bristle crosses
+/// tau_c1 at the fraction `lam` of its elastic increment `dtau` (stress `tau` at the start):
+/// on the elastic branch the stress is incremental (Eq. 4.21; with L_x != L_y or spin it is
+/// not parallel to u), on the plastic branch it is parallel to u (`dir`). The end stress
+/// turns from the direction at the crossing to `dir` in proportion to the plastic remainder
+/// 1 - lam of the move: at lam -> 1 (the trial just reaches tau_c1) it is the elastic trial's
+/// direction, so the stress is continuous across the elastic/plastic boundary in the inputs
+/// (issue 24: a 0.46 MPa jump of tau_x, 0.1 N of F_x, where a bristle ends a move just past
+/// tau_c1); at lam = 0 it is `dir`, as before. Only the crossing move's end state changes (the
+/// next move starts from |tau| along u): one bristle per strip, O(1/nx) of the forces.
+#[inline]
+fn crossing_dir(tau: [f64; 2], dtau: [f64; 2], lam: f64, dir: [f64; 2]) -> [f64; 2] {
+    let tc = [tau[0] + lam * dtau[0], tau[1] + lam * dtau[1]];
+    let nc = norm(tc);
+    if !(lam > 0.0 && nc > TINY) {
+        return dir;
+    }
+    let w = lam.min(1.0);
+    let d = [
+        w * tc[0] / nc + (1.0 - w) * dir[0],
+        w * tc[1] / nc + (1.0 - w) * dir[1],
+    ];
+    let nd = norm(d);
+    if nd > TINY {
+        [d[0] / nd, d[1] / nd]
+    } else {
+        dir
     }
 }
 

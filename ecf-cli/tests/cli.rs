@@ -1,17 +1,6 @@
 //! The `ecf` binary: CSV output with headers, and clear errors (flag, value, accepted range, exit code != 0) for bad input.
-use std::process::Command;
-
-fn ecf(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ecf"))
-        .args(args)
-        .output()
-        .expect("run ecf");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
+mod common;
+use common::ecf;
 
 #[test]
 fn curve_prints_csv_with_header_and_units_in_names() {

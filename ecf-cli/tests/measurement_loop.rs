@@ -1,18 +1,8 @@
 //! `ecf compare/fit/diagnose` on users' own files: units in headers, delimiters, missing
 //! quantities, failed fits, bounds, nothing to try (issue 12).
+mod common;
+use common::ecf;
 use std::process::Command;
-
-fn ecf(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ecf"))
-        .args(args)
-        .output()
-        .expect("run ecf");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
 
 fn dir(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("ecf-loop-{name}-{}", std::process::id()));

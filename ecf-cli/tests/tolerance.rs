@@ -1,19 +1,8 @@
 //! `--tol`: the grid and scheme chosen from creep-core's accuracy table, printed on stderr; explicit --grid and --scheme override it; bad tolerances are refused.
 use creep_core::engine::Scheme;
 use creep_core::tolerance::{self, Filter};
-use std::process::Command;
-
-fn ecf(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ecf"))
-        .args(args)
-        .output()
-        .expect("run ecf");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
+mod common;
+use common::ecf;
 
 /// A short dry creepage step at 5 m/s with 1 ms steps, plus `extra` flags.
 fn step(extra: &[&str]) -> (i32, String, String) {
@@ -61,38 +50,34 @@ fn tol_runs_on_the_grid_and_scheme_the_table_gives_and_says_which() {
 #[test]
 fn explicit_grid_and_scheme_override_tol() {
     let loose = tolerance::choose(0.5, 5.0, Some(1e-3), Filter::default()).expect("choice");
-    assert_ne!(
-        (loose.nx, loose.ny),
-        (80, 21),
-        "the test needs another grid"
-    );
-    let (_, plain, _) = step(&["--grid", "80x21"]);
-    let (code, out, err) = step(&["--tol", "0.5", "--grid", "80x21"]);
+    assert_ne!((loose.nx, loose.ny), (80, 7), "the test needs another grid");
+    let (_, plain, _) = step(&["--grid", "80x7"]);
+    let (code, out, err) = step(&["--tol", "0.5", "--grid", "80x7"]);
     assert_eq!(code, 0, "{err}");
     let (_, chosen, _) = step(&["--tol", "0.5"]);
-    // the grid is the explicit one; the scheme is chosen among the table's rows on 80x21
+    // the grid is the explicit one; the scheme is chosen among the table's rows on 80x7
     let on80 = tolerance::choose(
         0.5,
         5.0,
         Some(1e-3),
         Filter {
             nx: Some(80),
-            ny: Some(21),
+            ny: Some(7),
             scheme: None,
         },
     )
-    .expect("80x21 is tabulated");
+    .expect("80x7 is tabulated");
     let (_, explicit, _) = step(&[
         "--grid",
-        "80x21",
+        "80x7",
         "--scheme",
         tolerance::scheme_name(on80.scheme),
     ]);
     assert_eq!(out, explicit);
-    assert_ne!(out, chosen, "--grid 80x21 was not used");
-    assert!(err.contains("grid 80x21"), "{err}");
+    assert_ne!(out, chosen, "--grid 80x7 was not used");
+    assert!(err.contains("grid 80x7"), "{err}");
     // both explicit: exactly the run without --tol
-    let (_, both, _) = step(&["--tol", "0.5", "--grid", "80x21", "--scheme", "cells"]);
+    let (_, both, _) = step(&["--tol", "0.5", "--grid", "80x7", "--scheme", "cells"]);
     assert_eq!(both, plain);
     // a scheme alone: the choice keeps it
     let (code, _, err) = step(&["--tol", "0.5", "--scheme", "continuous"]);

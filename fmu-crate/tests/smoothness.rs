@@ -77,7 +77,8 @@ fn agree(what: &str, d: &[[f64; 3]], outs: &[usize], rel: f64, from: usize) {
 }
 
 /// A master's Jacobian at a communication point (after `STEPS` steps): each entry of the
-/// 3 x 4 Jacobian by increments 1e-4 ... 1e-8 agrees within 1 % with the one at 1e-6.
+/// 3 x 4 Jacobian by increments 1e-4 ... 1e-8 (1e-5 ... 1e-8 for F_N, whose larger
+/// increment spans lattice kinks) agrees within 1 % with the one at 1e-6.
 #[test]
 fn a_masters_jacobian_at_a_communication_point_is_smooth() {
     let mut f = start("jacobian", None);
@@ -98,7 +99,14 @@ fn a_masters_jacobian_at_a_communication_point_is_smooth() {
         };
         let d = derivatives(input, |p, m| (one_step(p), one_step(m)));
         eprintln!("{input}: {d:?}");
-        agree(input, &d, &[0, 1, 2], 0.01, 0);
+        // F_N changes the semi-axes and with them the cells the step rolls: an increment
+        // of 1e-4 of F_N spans lattice kinks (nodes changing regime). Measured with the
+        // Gauss-Legendre strips (issue 24 step 6): M_z's slope changes by 0.6-1.2 % at each
+        // of four kinks between +1e-5 and +5e-5 of F_N, so the 1e-4 difference is 1.7 % off
+        // the local derivative (F_x 0.05 %); increments from 1e-5 down stay between kinks.
+        // (With equal strips no kink happened to fall within 1e-4 here.)
+        let from = if input == "FN" { 1 } else { 0 };
+        agree(input, &d, &[0, 1, 2], 0.01, from);
     }
     f.free_state(saved);
 }
@@ -130,7 +138,8 @@ fn a_whole_run_is_smooth_in_the_creepages_and_spin() {
 /// +-1 N of F_x per 1/20 cell, and a node that changes regime is a kink), so an increment
 /// of 1e-4 or 1e-5 of F_N spans kinks and sees the ripple, not the derivative; the
 /// increments 1e-6 ... 1e-8 stay between kinks and agree. A master's Jacobian (one step from
-/// a saved state, above) is not affected: its perturbation rolls one step's cells only.
+/// a saved state, above) is less affected: its perturbation rolls one step's cells only,
+/// and only its 1e-4 increment spans kinks.
 #[test]
 fn whole_run_in_fn_has_kinks_of_the_lattice_phase() {
     let run = |x: f64| {

@@ -1,4 +1,4 @@
-//! A serialized FMU state of format version 4 (written on branch issue-27 from main at e5dece1, before parameters and effects were stored by name) loads, keeps what the importer had set and continues as a fresh run of this build does (within the discretisation changes since).
+//! A serialized FMU state of format version 4 (written on branch issue-27 from main at e5dece1, before parameters and effects were stored by name) loads, keeps what the importer had set and continues close to a fresh run of this build (within the ripple of its coarse lattice, whose nodes sit elsewhere).
 
 mod common;
 use common::vr;
@@ -63,20 +63,24 @@ fn a_version_4_state_loads_and_continues() {
         .filter(|v| v.causality == vars::Causality::Output)
         .map(|v| v.vr)
         .collect();
+    // The fixture was written before the temperature solve's tolerance went from 1e-4 to
+    // 1e-10 (issue 25) and before issue 24's whole-cell commit, cold crossing and
+    // Gauss-Legendre strips (this grid's 3 strips moved from eta = 0, +-2/3 to 0, +-0.775).
+    // The continuation is not a fresh run of this build: it keeps the fixture's lattice,
+    // whose nodes sit elsewhere than a fresh run's, so the two differ by the ripple of this
+    // 6 x 3 grid as its nodes pass the edges, and do not converge (over steps 7-9, measured
+    // with the step 6 strips: F_x 1.2 %, T_max 1.7 %, T_mean 3.7 %, P_fric 3.1 %; before
+    // them at most 1.3e-3, and the bound was 1e-2). A value read into the wrong place would
+    // be off by far more than 5e-2; what the importer set is compared exactly above, and
+    // the bytes below.
     for k in 7..10 {
         step(&mut now, k);
         step(&mut old, k);
         for &o in &outputs {
             let a = now.get_real(o).expect("output");
             let b = old.get_real(o).expect("output");
-            // the fixture was written before the temperature solve's tolerance went from
-            // 1e-4 to 1e-10 (issue 25, up to 6e-7 here) and before the whole-cell commit
-            // (issue 24: its bristles sit in cut cells, which this build moves whole from
-            // a fresh run's node states, up to 1.3e-3 here at step 7); a value read into the
-            // wrong place would be off by far more than 1e-2, and what the importer set is
-            // compared exactly above
             assert!(
-                (a - b).abs() <= 1e-2 * a.abs().max(b.abs()) + 1e-9,
+                (a - b).abs() <= 5e-2 * a.abs().max(b.abs()) + 1e-9,
                 "step {k}: vr {o}: {a} vs {b}"
             );
         }

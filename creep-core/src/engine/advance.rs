@@ -1,6 +1,6 @@
 //! Advancing the bristles: one bristle move with its local temperature (Eq. 4.16, 4.21, 4.35), sub-steps of a strip, the march of new bristles.
 
-use super::kin::{weighted_stress, Kin};
+use super::kin::{trapezoid_stress, Kin};
 use super::strip::Strip;
 use super::Contact;
 use crate::bristle::{self, BristleState};
@@ -51,13 +51,13 @@ impl Contact {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
-                self.move_bristle_with::<false>(j, xi, &sp.nodes[slot + 1], kin, &fac, s, ac);
+                self.move_bristle_with(j, xi, &sp.nodes[slot + 1], kin, &fac, s, ac);
             }
         } else {
             for slot in skip..inside.min(end) {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
-                self.move_bristle::<false>(j, xi, kin, &fac, &mut sp.st[id], &mut sp.acc[id]);
+                self.move_bristle(j, xi, kin, &fac, &mut sp.st[id], &mut sp.acc[id]);
             }
         }
     }
@@ -89,7 +89,7 @@ impl Contact {
     /// closer to the trailing edge than half a cell: the last node stands for the last cell
     /// (docs/model.md); the spin lever arm is the path's midpoint.
     #[inline]
-    pub(super) fn move_bristle<const W: bool>(
+    pub(super) fn move_bristle(
         &self,
         j: usize,
         xi_end: f64,
@@ -101,37 +101,17 @@ impl Contact {
         let dxi = 2.0 * self.ell[j] / self.nx as f64;
         let np = self.r.node_p(
             &self.patch,
-            xi_end.max(-self.ell[j] + 0.5 * dxi),
+            xi_end.max(-self.ell[j] + super::grid::TRAILING_NODE * dxi),
             self.eta[j],
         );
-        self.move_bristle_with::<W>(j, xi_end, &np, kin, fac, s, acc);
-    }
-
-    /// [`Self::move_bristle`] for a sub-step of the continuous scheme: with the start stress
-    /// weighted in the dissipation where the sub-step is longer than a cell
-    /// (`Kin::w_old` > 0; a separate instance, so that the other moves run without it).
-    #[inline]
-    fn move_continuous(
-        &self,
-        j: usize,
-        xi_end: f64,
-        kin: &Kin,
-        fac: &StepFactors,
-        s: &mut BristleState,
-        acc: &mut [f64; N_KERNEL],
-    ) {
-        if kin.w_old > 0.0 {
-            self.move_bristle::<true>(j, xi_end, kin, fac, s, acc);
-        } else {
-            self.move_bristle::<false>(j, xi_end, kin, fac, s, acc);
-        }
+        self.move_bristle_with(j, xi_end, &np, kin, fac, s, acc);
     }
 
     /// [`Self::move_bristle`] with the pressure parts `np` of the end node given (the march
     /// takes them from the per-load cache of the lattice nodes).
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    fn move_bristle_with<const W: bool>(
+    fn move_bristle_with(
         &self,
         j: usize,
         xi_end: f64,
@@ -149,9 +129,9 @@ impl Contact {
         };
         let x_mid = a * (xi_end + 0.5 * kin.dist / a);
         if self.fast.cold {
-            self.update_bristle_cold::<W>(kin, np, [x_mid, y], s);
+            self.update_bristle_cold(kin, np, [x_mid, y], s);
         } else {
-            self.update_bristle::<W>(kin, np, [x_mid, y], s, acc, fac);
+            self.update_bristle(kin, np, [x_mid, y], s, acc, fac);
         }
     }
 
@@ -159,13 +139,7 @@ impl Contact {
     /// engine/fastpath.rs `COLD`; FASTSIM, isothermal ECF): the same operations without the
     /// temperature solve and the heat kernel.
     #[inline]
-    fn update_bristle_cold<const W: bool>(
-        &self,
-        k: &Kin,
-        np: &NodeP,
-        [x, y]: [f64; 2],
-        s: &mut BristleState,
-    ) {
+    fn update_bristle_cold(&self, k: &Kin, np: &NodeP, [x, y]: [f64; 2], s: &mut BristleState) {
         let du = k.rigid_slip([x, y]);
         let m = self.r.material_base(np, k.t_bulk);
         let (lxe, lye, dtau) = k.flex(m.le, [x, y]);
@@ -174,11 +148,7 @@ impl Contact {
         s.q = if k.heat {
             let dux = du[0] - lxe * (s.tau[0] - old[0]);
             let duy = du[1] - lye * (s.tau[1] - old[1]);
-            let tw = if W {
-                weighted_stress(s.tau, old, k.w_old)
-            } else {
-                s.tau
-            };
+            let tw = trapezoid_stress(s.tau, old);
             (self.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0)
         } else {
             0.0
@@ -195,7 +165,8 @@ impl Contact {
             nodes.clear();
             nodes.push(NodeP::default());
             for k in 1..=nx {
-                let xi = (self.ell[j] - k as f64 * dxi).max(-self.ell[j] + 0.5 * dxi);
+                let xi = (self.ell[j] - k as f64 * dxi)
+                    .max(-self.ell[j] + super::grid::TRAILING_NODE * dxi);
                 nodes.push(self.r.node_p(&self.patch, xi, self.eta[j]));
             }
             *p0 = self.patch.p0;
@@ -238,7 +209,7 @@ impl Contact {
             // slot nx is past the trailing edge once the phase is > 0: not moved (as in the loop)
             if d_end > 0.0 && k < self.nx {
                 let (mut ps, mut pacc) = (s, acc);
-                self.move_bristle::<false>(
+                self.move_bristle(
                     j,
                     self.ell[j] - (k as f64 + phase_end) * dxi,
                     &kin_part,
@@ -257,7 +228,7 @@ impl Contact {
                 }
             }
             if k + 1 < count {
-                self.move_bristle_with::<false>(
+                self.move_bristle_with(
                     j,
                     self.ell[j] - (k as f64 + 1.0) * dxi,
                     &nodes[k + 1],
@@ -335,7 +306,8 @@ impl Contact {
             s.q = if kin.heat {
                 let dux = du[0] - lx * (s.tau[0] - old[0]);
                 let duy = du[1] - ly * (s.tau[1] - old[1]);
-                ((s.tau[0] * dux + s.tau[1] * duy) * inv_h).max(0.0)
+                let tw = trapezoid_stress(s.tau, old);
+                ((tw[0] * dux + tw[1] * duy) * inv_h).max(0.0)
             } else {
                 0.0
             };
@@ -399,16 +371,10 @@ impl Contact {
         let (h, d) = (dt / n_sub_eff, dist / n_sub_eff);
         let dx = 2.0 * self.ell[j] * a / nx as f64;
         let dxi = 2.0 * self.ell[j] / nx as f64;
-        // a sub-step of n > 1 cells of this strip weighs its start stress by (1 - 1/n)/2 in
-        // its dissipation: n one-cell moves at the end stress each sum to this, to second
-        // order (the march's cells are what the other schemes and the steady state use)
-        let kin_for = |hh: f64, dd: f64| {
-            let mut k = self.kin(hh, dd);
-            if dd > dx {
-                k.w_old = 0.5 * (1.0 - dx / dd);
-            }
-            k
-        };
+        // every move dissipates at the mean of its start and end stresses (the trapezoid,
+        // kin::trapezoid_stress), a sub-step of n > 1 cells as n one-cell moves would, to
+        // second order
+        let kin_for = |hh: f64, dd: f64| self.kin(hh, dd);
         let kin = kin_for(h, d);
         let fac = self.factors(sp.fac, h, kin.heat);
         // A sub-step longer than a cell is cut into m pieces of at most one cell where it
@@ -463,15 +429,15 @@ impl Contact {
                                 } else {
                                     xi_start - p as f64 * fine.dist / a
                                 };
-                                self.move_bristle::<false>(j, xe, fine, fine_fac, s, ac);
+                                self.move_bristle(j, xe, fine, fine_fac, s, ac);
                             }
                         }
                         Some((fine, fine_fac, rest, rest_fac)) if i == n_sub => {
                             let xe = xi_start - rest.dist / a;
-                            self.move_continuous(j, xe, rest, rest_fac, s, ac);
-                            self.move_bristle::<false>(j, xi_end, fine, fine_fac, s, ac);
+                            self.move_bristle(j, xe, rest, rest_fac, s, ac);
+                            self.move_bristle(j, xi_end, fine, fine_fac, s, ac);
                         }
-                        _ => self.move_continuous(j, xi_end, &kin, &fac, s, ac),
+                        _ => self.move_bristle(j, xi_end, &kin, &fac, s, ac),
                     }
                 }
             }

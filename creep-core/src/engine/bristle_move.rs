@@ -1,6 +1,6 @@
 //! One bristle's move over a sub-step: the bristle law (Sec. 4.1) under the local temperature solve (Eq. 4.35), and where an adhering bristle yields (the cold crossing, docs/model.md section 9 step 5).
 
-use super::kin::{weighted_stress, Kin};
+use super::kin::{trapezoid_stress, Kin};
 use super::Contact;
 use crate::bristle::{self, BristleState};
 use crate::material::NodeP;
@@ -22,7 +22,7 @@ fn lerp(a: &BristleState, b: &BristleState, w: f64) -> Option<BristleState> {
 impl Contact {
     /// Advances one bristle by one sub-step; returns its heat density q (W/m^2, both bodies).
     #[inline]
-    pub(super) fn update_bristle<const W: bool>(
+    pub(super) fn update_bristle(
         &self,
         k: &Kin,
         np: &NodeP,
@@ -37,7 +37,7 @@ impl Contact {
         let t_hist = self.t_hist(k, acc, fac);
         // a layer that only softens as it heats: the scalar solve (module `softening`)
         if self.softening_fast && k.heat {
-            if let Some(q) = self.update_softening::<W>(k, np, [x, y], du, t_hist, s, acc, fac) {
+            if let Some(q) = self.update_softening(k, np, [x, y], du, t_hist, s, acc, fac) {
                 return q;
             }
         }
@@ -112,11 +112,7 @@ impl Contact {
                 };
                 let dux = du[0] - lxe * (tr[0] - old.tau[0]);
                 let duy = du[1] - lye * (tr[1] - old.tau[1]);
-                let tw = if W {
-                    weighted_stress(ns.tau, old.tau, k.w_old)
-                } else {
-                    ns.tau
-                };
+                let tw = trapezoid_stress(ns.tau, old.tau);
                 (self.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0)
             } else {
                 0.0

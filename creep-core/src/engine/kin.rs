@@ -19,11 +19,6 @@ pub(super) struct Kin {
     /// alpha_c 2 sqrt(h): the flash temperature per heat density of the sub-step's own
     /// interval (Eq. 4.35's first term), 0 without heat flow.
     pub(super) self_c: f64,
-    /// Weight of the sub-step's start stress in its dissipation (Eq. 4.29): 0 for moves of
-    /// at most one cell (the march and the cell schemes: the stress at the end); for a
-    /// continuous sub-step of n > 1 cells (1 - 1/n)/2, so that it dissipates what n one-cell
-    /// moves would (to second order), see [`Contact::advance_continuous`].
-    pub(super) w_old: f64,
 }
 
 impl Kin {
@@ -51,15 +46,14 @@ impl Kin {
     }
 }
 
-/// The stress that multiplies a long continuous sub-step's plastic slip in its
-/// dissipation (Eq. 4.29): `new - w (new - old)`, w = [`Kin::w_old`] > 0. (Moves of at most
-/// one cell take `new` itself: they run the instance without the weight.)
+/// The stress that multiplies a move's plastic slip in its dissipation (Eq. 4.29): the mean
+/// of its start and end stresses, the trapezoidal rule over the move (docs/model.md section
+/// 9, step 6). The end stress alone (the rule before step 6) is first order in the cell
+/// length: it overstates the heat where the stress falls along the move and understates it
+/// where the stress rises, and the flash temperature carries that error downstream.
 #[inline]
-pub(super) fn weighted_stress(new: [f64; 2], old: [f64; 2], w: f64) -> [f64; 2] {
-    [
-        new[0] - w * (new[0] - old[0]),
-        new[1] - w * (new[1] - old[1]),
-    ]
+pub(super) fn trapezoid_stress(new: [f64; 2], old: [f64; 2]) -> [f64; 2] {
+    [0.5 * (new[0] + old[0]), 0.5 * (new[1] + old[1])]
 }
 
 impl Contact {
@@ -97,7 +91,6 @@ impl Contact {
             alpha_c,
             t_bulk: i.t_bulk,
             self_c: if heat { alpha_c * 2.0 * h.sqrt() } else { 0.0 },
-            w_old: 0.0,
         }
     }
 }

@@ -247,21 +247,14 @@ impl Contact {
         let (nx, ny) = (cfg.grid.nx, cfg.grid.ny);
         let line = matches!(cfg.geometry, Geometry::Line { .. });
         let ny = if line { 1 } else { ny };
-        let mut eta = Vec::with_capacity(ny);
-        let mut ell = Vec::with_capacity(ny);
-        let mut deta = Vec::with_capacity(ny);
-        for j in 0..ny {
-            if line {
-                eta.push(0.0);
-                ell.push(1.0);
-                deta.push(2.0);
-            } else {
-                let e = -1.0 + (j as f64 + 0.5) * 2.0 / ny as f64;
-                eta.push(e);
-                ell.push((1.0 - e * e).sqrt());
-                deta.push(2.0 / ny as f64);
-            }
-        }
+        // the strips at the Gauss-Legendre nodes in eta = y/b, each with its weight as its
+        // width (grid::strip_rule); a line contact has one strip of width 2
+        let (eta, deta): (Vec<f64>, Vec<f64>) = if line {
+            (vec![0.0], vec![2.0])
+        } else {
+            grid::strip_rule(ny).into_iter().unzip()
+        };
+        let ell = eta.iter().map(|e| (1.0 - e * e).sqrt()).collect();
         let n = ny * (nx + 1);
         let patch = Patch {
             a: 1.0,

@@ -28,7 +28,7 @@ impl Contact {
     /// [`Contact::update_bristle`].
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn update_softening<const W: bool>(
+    pub(super) fn update_softening(
         &self,
         k: &Kin,
         np: &NodeP,
@@ -55,11 +55,8 @@ impl Contact {
         // flexibilities L + L_e and the elastic increment (Eq. 4.21); L_e does not depend on T
         let (lxe, lye, dtau) = k.flex(m_h.le, [x, y]);
         let path = mv.softening_path(&old, dtau, &m_h)?;
-        // a weighted start stress (long continuous sub-steps) in its own instance, so that
-        // the common moves run the unweighted code
         let pm = PathMove {
             kq_h: self.r.kq / k.h,
-            k,
             np,
             m_h: &m_h,
             old: &old,
@@ -70,7 +67,7 @@ impl Contact {
             t_hist,
             self_c,
         };
-        let (mut ns, q) = self.solve_on_path::<W>(&pm, path)?;
+        let (mut ns, q) = self.solve_on_path(&pm, path)?;
         ns.temp = t_hist + self_c * q;
         ns.q = q;
         *s = ns;
@@ -96,16 +93,10 @@ impl Contact {
     /// fall with T and the scalar search fails, if an elastic bristle would yield at the
     /// root, or if the residual at the root is not within the tolerance: the caller then runs
     /// the general solve.
-    fn solve_on_path<const WEIGHTED: bool>(
-        &self,
-        pm: &PathMove,
-        path: SofteningPath,
-    ) -> Option<(BristleState, f64)> {
+    fn solve_on_path(&self, pm: &PathMove, path: SofteningPath) -> Option<(BristleState, f64)> {
         let (tau, regime, q, t) = match path {
-            SofteningPath::Elastic => self.elastic_on_path::<WEIGHTED>(pm)?,
-            SofteningPath::Hardening { t0, dn, dir } => {
-                self.hardening_on_path::<WEIGHTED>(pm, t0, dn, dir)?
-            }
+            SofteningPath::Elastic => self.elastic_on_path(pm)?,
+            SofteningPath::Hardening { t0, dn, dir } => self.hardening_on_path(pm, t0, dn, dir)?,
         };
         if (pm.t_hist + pm.self_c * q - t).abs() >= self.t_tol {
             return None;
@@ -122,10 +113,10 @@ impl Contact {
     /// An elastic move: the stress does not depend on T, so q is constant and the root one
     /// step away; None if the bristle would no longer be elastic there. Returns (tau,
     /// regime, q, T).
-    fn elastic_on_path<const WEIGHTED: bool>(&self, pm: &PathMove) -> Option<OnPath> {
+    fn elastic_on_path(&self, pm: &PathMove) -> Option<OnPath> {
         let (old, dtau) = (pm.old, pm.dtau);
         let tr = [old.tau[0] + dtau[0], old.tau[1] + dtau[1]];
-        let q = pm.heat::<WEIGHTED>(tr, tr);
+        let q = pm.heat(tr, tr);
         let t = pm.t_hist + pm.self_c * q;
         let m = self.material_static(pm.np, t);
         let ntr = (tr[0] * tr[0] + tr[1] * tr[1]).sqrt();
@@ -139,17 +130,11 @@ impl Contact {
     /// `dn`: the root temperature of the heat of the law's stress t(T), and the stress,
     /// regime and heat density there; None where the general solve must run. Returns (tau,
     /// regime, q, T).
-    fn hardening_on_path<const WEIGHTED: bool>(
-        &self,
-        pm: &PathMove,
-        t0: f64,
-        dn: f64,
-        dir: [f64; 2],
-    ) -> Option<OnPath> {
+    fn hardening_on_path(&self, pm: &PathMove, t0: f64, dn: f64, dir: [f64; 2]) -> Option<OnPath> {
         let law = HardeningLaw::new(self, pm.m_h, t0, dn);
         let (t_h, dt_h) = law.at_hist();
-        let coef = pm.heat_along::<WEIGHTED>(dir, t_h);
-        let (root, sliding, t) = self.hardening_root::<WEIGHTED>(pm, &law, coef, (t_h, dt_h))?;
+        let coef = pm.heat_along(dir, t_h);
+        let (root, sliding, t) = self.hardening_root(pm, &law, coef, (t_h, dt_h))?;
         // the span closes at one temperature and stays closed above it: open at the
         // root means open on the whole path from t_hist
         if self.r.span_may_close() && self.span_closed(pm.np, root) {
@@ -167,13 +152,13 @@ impl Contact {
         } else {
             Regime::Plastic
         };
-        Some((tau, regime, pm.heat::<WEIGHTED>(tau, tau_r), root))
+        Some((tau, regime, pm.heat(tau, tau_r), root))
     }
 
     /// The root T of t_hist + self_c q(T) = T for the heat q = a t - b t^2 + c (`coef`) of the
     /// law's stress t(T), from t and dt/dT at t_hist (`at_hist`); returns (T, sliding, t at
     /// T), or None if the scalar search fails.
-    fn hardening_root<const WEIGHTED: bool>(
+    fn hardening_root(
         &self,
         pm: &PathMove,
         law: &HardeningLaw,
@@ -188,7 +173,7 @@ impl Contact {
             let (t, dt, sl, tc2) = law.stress(t_k - t_hist);
             last.set((t_k, t, dt, sl, tc2));
             let q = a * t - b * t * t;
-            let q = if WEIGHTED { q + c } else { q };
+            let q = q + c;
             if q <= 0.0 {
                 (0.0, 0.0)
             } else {
@@ -196,7 +181,7 @@ impl Contact {
             }
         };
         let q_h = a * t_h - b * t_h * t_h;
-        let q_h = if WEIGHTED { q_h + c } else { q_h };
+        let q_h = q_h + c;
         let (q_h, dq_h) = if q_h <= 0.0 {
             (0.0, 0.0)
         } else {
@@ -211,12 +196,7 @@ impl Contact {
                 q_h
             } else {
                 // the vertex of a t - b t^2 + c bounds q where it rises
-                let v = a * a / (4.0 * b);
-                if WEIGHTED {
-                    v + c
-                } else {
-                    v
-                }
+                a * a / (4.0 * b) + c
             };
             let (root, _) =
                 thermal::solve_monotone(t_hist, self_c, (q_h, dq_h), q_max, self.t_tol, q_of)?;
@@ -259,7 +239,6 @@ type OnPath = ([f64; 2], Regime, f64, f64);
 struct PathMove<'a> {
     /// kq / h of the sub-step.
     kq_h: f64,
-    k: &'a Kin,
     np: &'a NodeP,
     /// The material at t_hist (with the operating point's formula and custom factors).
     m_h: &'a Material,
@@ -279,42 +258,33 @@ struct PathMove<'a> {
 
 impl PathMove<'_> {
     /// q of Eq. 4.29 as in the law's evaluation: tau_w . (du - L (tau_r - tau_old)) kq / h,
-    /// tau_r the release stress, tau_w = tau - w (tau - tau_old) (w = 0 but for long
-    /// continuous sub-steps).
+    /// tau_r the release stress, tau_w = (tau + tau_old) / 2 (the trapezoid).
     #[inline]
-    fn heat<const WEIGHTED: bool>(&self, tau: [f64; 2], tau_r: [f64; 2]) -> f64 {
+    fn heat(&self, tau: [f64; 2], tau_r: [f64; 2]) -> f64 {
         let (du, l, old) = (self.mv.du(), self.l, self.old);
         let dux = du[0] - l[0] * (tau_r[0] - old.tau[0]);
         let duy = du[1] - l[1] * (tau_r[1] - old.tau[1]);
-        let tw = if WEIGHTED {
-            super::kin::weighted_stress(tau, old.tau, self.k.w_old)
-        } else {
-            tau
-        };
+        let tw = super::kin::trapezoid_stress(tau, old.tau);
         (self.kq_h * (tw[0] * dux + tw[1] * duy)).max(0.0)
     }
 
     /// The heat density along `dir` as q = a t - b t^2 + c in the stress t, with the release
-    /// stress tau_r = t_h + theta (t - t_h): returns (a, b, c) (c = 0 unless the start stress
-    /// is weighted, w > 0: then tau_w = (1 - w) t dir + w tau_old scales the first two terms
-    /// by 1 - w and adds w tau_old . slip).
-    fn heat_along<const WEIGHTED: bool>(&self, dir: [f64; 2], t_h: f64) -> (f64, f64, f64) {
+    /// stress tau_r = t_h + theta (t - t_h): returns (a, b, c). The dissipating stress is the
+    /// trapezoid tau_w = (t dir + tau_old) / 2 ([`super::kin::trapezoid_stress`]): it halves
+    /// the terms of the end stress and adds tau_old . slip / 2.
+    fn heat_along(&self, dir: [f64; 2], t_h: f64) -> (f64, f64, f64) {
         let (kq_h, l, du, old, theta) = (self.kq_h, self.l, self.mv.du(), self.old, self.theta);
-        let w = self.k.w_old;
+        let w = 0.5;
         let bb = kq_h * (l[0] * dir[0] * dir[0] + l[1] * dir[1] * dir[1]);
         let a = kq_h
             * (dir[0] * (du[0] + l[0] * old.tau[0]) + dir[1] * (du[1] + l[1] * old.tau[1]))
             - bb * t_h * (1.0 - theta);
         let b = bb * theta;
-        if !WEIGHTED {
-            (a, b, 0.0)
-        } else {
-            let o = old.tau;
-            let dd = kq_h * (l[0] * o[0] * dir[0] + l[1] * o[1] * dir[1]);
-            let c0 = kq_h * (o[0] * (du[0] + l[0] * o[0]) + o[1] * (du[1] + l[1] * o[1]))
-                - dd * t_h * (1.0 - theta);
-            ((1.0 - w) * a - w * dd * theta, (1.0 - w) * b, w * c0)
-        }
+        let o = old.tau;
+        let dd = kq_h * (l[0] * o[0] * dir[0] + l[1] * o[1] * dir[1]);
+        let c0 = kq_h * (o[0] * (du[0] + l[0] * o[0]) + o[1] * (du[1] + l[1] * o[1]))
+            - dd * t_h * (1.0 - theta);
+        ((1.0 - w) * a - w * dd * theta, (1.0 - w) * b, w * c0)
     }
 }
 

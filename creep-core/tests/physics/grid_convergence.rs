@@ -4,7 +4,7 @@ use creep_core::{config::DEFAULT_GRID, Model};
 
 #[test]
 fn default_grid_within_1_percent_of_4x_refined() {
-    for name in ["table4.1", "fastsim", "dry"] {
+    for name in ["table4.1", "fastsim", "dry", "wet"] {
         let base = preset(name);
         let fine = with_grid(base.clone(), 4 * DEFAULT_GRID.nx, 4 * DEFAULT_GRID.ny);
         for v in [5.0, 20.0] {

@@ -1,4 +1,4 @@
-//! Model states serialized by an earlier build (format version 2, written on branch issue-27 from main at e5dece1, before the state stored its values by name) still load, agree bit for bit with a fresh run of this build once the bristles they hold have left the contact, and continue bit for bit once saved again in the current format.
+//! Model states serialized by an earlier build (format version 2, written on branch issue-27 from main at e5dece1, before the state stored its values by name) still load, agree with a fresh run of this build within the ripple of its lattice once the bristles they hold have left the contact, and continue bit for bit once saved again in the current format.
 use crate::common::*;
 use creep_core::{Config, Grid, Inputs, Model};
 
@@ -59,21 +59,14 @@ const TABLE41_OUTPUTS: [f64; 13] = [
     873541045.238297,
 ];
 
-/// How far a fixture's outputs (and Polach's continuation) may be from a fresh run of this
-/// build at the same instant. Polach has not changed since the fixtures were written: 1e-5
-/// (its tolerance change moved nothing). The bristle model has: the temperature solve's
-/// tolerance (issue 25, up to 6e-7 here), the whole-cell commit (issue 24: this 8 x 3 grid,
-/// whose 1.9 mm cells each step of 1 mm cuts, is 2.0 % off the old cut-cell value at the
-/// fixture's instant) and the cold crossing (issue 24, step 5). These are discretisation
-/// changes, not reader errors: the reader is checked bit for bit above, by re-saving, and by
-/// the bit-for-bit agreement one transit time after loading.
-fn tolerance(name: &str) -> f64 {
-    if name == "polach" {
-        1e-5
-    } else {
-        3e-2
-    }
-}
+/// How far Polach's fixture may be from a fresh run of this build: it has not changed since
+/// the fixtures were written, 1e-5 (its tolerance change moved nothing). The bristle model
+/// has no such bound: its discretisation changed since (the temperature solve's tolerance,
+/// issue 25; the whole-cell commit, the cold crossing and the Gauss-Legendre strips, issue
+/// 24: on this 8 x 3 grid the strips moved, 6.4 % in F_x at the fixture's instant). Its
+/// reader is checked bit for bit instead: the outputs the fixture holds, re-saving, and the
+/// agreement with a fresh run one transit time after loading.
+const POLACH_TOL: f64 = 1e-5;
 
 #[test]
 fn version_2_states_load_and_continue() {
@@ -91,12 +84,14 @@ fn version_2_states_load_and_continue() {
                 "{name}: the outputs the fixture holds"
             );
         }
-        close(
-            &format!("{name}: outputs"),
-            &old.outputs(),
-            &now.outputs(),
-            tolerance(name),
-        );
+        if name == "polach" {
+            close(
+                &format!("{name}: outputs"),
+                &old.outputs(),
+                &now.outputs(),
+                POLACH_TOL,
+            );
+        }
         // what loaded is saved again in the current format, reads back and continues bit
         // for bit
         let again = old.save_state();
@@ -104,22 +99,35 @@ fn version_2_states_load_and_continue() {
         third.load_state(&again).expect("the re-saved state loads");
         assert_eq!(third.outputs(), old.outputs(), "{name}: re-saved outputs");
         // A fresh run of this build and the continuation of the old build's state see the
-        // same inputs; once every bristle that the old build placed has left the contact
-        // (one transit time 2a/v, plus the step that completes the last cell), nothing of
-        // the old state is left and the two agree bit for bit. Before that they differ by
-        // the discretisation changes since the fixture was written (up to 3.6 % in P_fric
-        // on this 8 x 3 grid at the first step); Polach has not changed and agrees from
-        // the first step.
+        // same inputs. Polach has not changed and agrees from the first step. The bristle
+        // model's continuation keeps the fixture's lattice: its strips' cells were cut for
+        // equal strips, and since issue 24's step 6 the strips sit at the Gauss-Legendre
+        // nodes with other lengths, so its nodes sit elsewhere along the strips than a fresh
+        // run's, and the two never agree bit for bit (they did before step 6, one transit
+        // time after loading). Once every bristle the old build placed has left the contact
+        // (one transit time 2a/v, plus the step that completes the last cell) they differ
+        // by the ripple of this 8 x 3 lattice only: measured at most 0.6 % in F_x, 1.6 % in
+        // T_mean, 3.0 % in P_fric, 0.045 in an area fraction; a value read into the wrong
+        // place would be off by far more than the 5 % (0.1) checked.
         let o = now.outputs();
         let transit = (2.0 * o.a / (input(0).v * 2e-4)).ceil() as usize + 1;
         for k in 7..7 + transit + 3 {
             let a = now.step(2e-4, &input(k)).expect("step");
             let b = old.step(2e-4, &input(k)).expect("step");
             let c = third.step(2e-4, &input(k)).expect("step");
-            if k - 7 + 1 >= transit {
-                assert_eq!(a, b, "{name}: step {k}, one transit time after loading");
-            } else if name == "polach" {
-                close(&format!("{name}: step {k}"), &a, &b, tolerance(name));
+            if name == "polach" {
+                close(&format!("{name}: step {k}"), &a, &b, POLACH_TOL);
+            } else if k - 7 + 1 >= transit {
+                let (x, y) = (a.to_array(), b.to_array());
+                // 7-9: the area fractions
+                for (n, (p, q)) in x.iter().zip(y).enumerate() {
+                    let ok = if (7..=9).contains(&n) {
+                        (p - q).abs() <= 0.1
+                    } else {
+                        (p - q).abs() <= 5e-2 * p.abs().max(q.abs()) + 1e-9
+                    };
+                    assert!(ok, "{name}: step {k}, output {n}: {p} vs {q}");
+                }
             }
             assert_eq!(b, c, "{name}: step {k} after re-saving");
         }

@@ -235,11 +235,11 @@ fn rel_tol_off_and_explicit_settings_keep_the_grid() {
     assert_eq!(i.get_integer(vr("scheme")), Ok(0));
     // explicit nx, ny override a loose tolerance that would choose another grid
     let loose = creep_core::tolerance::choose(0.5, 5.0, None, Default::default()).expect("c");
-    assert_ne!((loose.nx, loose.ny), (80, 21));
-    let (mut i, st, logs) = with_tol(0.5, 5.0, &[("nx", 80), ("ny", 21)]);
+    assert_ne!((loose.nx, loose.ny), (80, 7));
+    let (mut i, st, logs) = with_tol(0.5, 5.0, &[("nx", 80), ("ny", 7)]);
     assert_eq!(st, Status::Ok, "{logs:?}");
     assert_eq!(i.get_integer(vr("nx")), Ok(80));
-    assert_eq!(i.get_integer(vr("ny")), Ok(21));
+    assert_eq!(i.get_integer(vr("ny")), Ok(7));
     // an explicit grid the table does not have: used, with a warning
     let (mut i, st, logs) = with_tol(0.01, 5.0, &[("nx", 30), ("ny", 7)]);
     assert_eq!(st, Status::Warning, "{logs:?}");
