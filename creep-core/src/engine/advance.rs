@@ -86,8 +86,9 @@ impl Contact {
 
     /// Moves one bristle of strip `j` over `kin.dist` to its end position `xi_end`
     /// (normalized). The material is taken at the end of the sub-step (Eq. 4.5), but never
-    /// closer to the trailing edge than half a cell: the last node stands for the last cell
-    /// (docs/model.md); the spin lever arm is the path's midpoint.
+    /// closer to the trailing edge than [`super::grid::TRAILING_NODE`] of a cell: the last node
+    /// stands for the last cell (docs/model.md section 3); the spin lever arm is the path's
+    /// midpoint.
     #[inline]
     pub(super) fn move_bristle(
         &self,

@@ -156,3 +156,68 @@ impl Contact {
             .collect()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{strip_rule, TRAILING_NODE};
+
+    #[test]
+    fn strips_are_gauss_legendre() {
+        for ny in 1..=41 {
+            let r = strip_rule(ny);
+            assert_eq!(r.len(), ny);
+            // inside (-1, 1), ascending, symmetric, positive weights summing to 2
+            for (k, &(x, w)) in r.iter().enumerate() {
+                assert!(
+                    x > -1.0 && x < 1.0 && w > 0.0,
+                    "ny {ny}: node {k} ({x}, {w})"
+                );
+                let (xm, wm) = r[ny - 1 - k];
+                assert!(
+                    (x + xm).abs() < 1e-14 && (w - wm).abs() < 1e-14,
+                    "ny {ny}: symmetry"
+                );
+                if k > 0 {
+                    assert!(x > r[k - 1].0, "ny {ny}: ascending");
+                }
+            }
+            // exact for the monomials up to degree 2 ny - 1 (a rule with the right nodes and
+            // the wrong weights, or vice versa, is not)
+            for d in 0..2 * ny {
+                let q: f64 = r.iter().map(|&(x, w)| w * x.powi(d as i32)).sum();
+                let exact = if d % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (d as f64 + 1.0)
+                };
+                assert!(
+                    (q - exact).abs() < 1e-12,
+                    "ny {ny}, degree {d}: {q} vs {exact}"
+                );
+            }
+        }
+        // the known 3-point rule
+        let r = strip_rule(3);
+        assert!((r[2].0 - 0.6f64.sqrt()).abs() < 1e-15 && (r[1].1 - 8.0 / 9.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_trailing_node_makes_the_trapezoid_second_order_on_a_square_root() {
+        // sqrt(s) on [0, 1] (the sliding stress near the trailing edge) by the trapezoid over
+        // n cells with the edge node's value taken TRAILING_NODE cells inside: the error
+        // falls by 4 per halving (second order); at half a cell it falls like h^1.5
+        let err = |n: usize, off: f64| {
+            let h = 1.0 / n as f64;
+            let inner: f64 = (1..n).map(|k| (k as f64 * h).sqrt()).sum();
+            let t = h * (0.5 * (off * h).sqrt() + inner + 0.5);
+            (t - 2.0 / 3.0).abs()
+        };
+        for n in [10, 20, 40] {
+            let r = err(n, TRAILING_NODE) / err(2 * n, TRAILING_NODE);
+            assert!((r - 4.0).abs() < 0.1, "n {n}: ratio {r}");
+            let r_half = err(n, 0.5) / err(2 * n, 0.5);
+            assert!(r_half < 3.0, "n {n}: half a cell, ratio {r_half}");
+            assert!(err(n, TRAILING_NODE) < 0.1 * err(n, 0.5));
+        }
+    }
+}
