@@ -372,11 +372,10 @@ impl Contact {
         let (h, d) = (dt / n_sub_eff, dist / n_sub_eff);
         let dx = 2.0 * self.ell[j] * a / nx as f64;
         let dxi = 2.0 * self.ell[j] / nx as f64;
-        // every move dissipates at the mean of its start and end stresses (the trapezoid,
-        // kin::trapezoid_stress), a sub-step of n > 1 cells as n one-cell moves would, to
-        // second order
-        let kin_for = |hh: f64, dd: f64| self.kin(hh, dd);
-        let kin = kin_for(h, d);
+        // a sub-step of n > 1 cells dissipates at the trapezoid of its start and end
+        // stresses, as every move does (kin::trapezoid_stress): n one-cell moves sum to that,
+        // to second order
+        let kin = self.kin(h, d);
         let fac = self.factors(sp.fac, h, kin.heat);
         // A sub-step longer than a cell is cut into m pieces of at most one cell where it
         // ends within EDGE_CELLS cells of the trailing edge (the pressure falls to 0 there and
@@ -386,10 +385,10 @@ impl Contact {
         let m = parts(d, dx);
         let pieces = (m > 1.0).then(|| {
             let (hf, df) = (h / m, d / m);
-            let fine = kin_for(hf, df);
+            let fine = self.kin(hf, df);
             let fine_fac = self.factors(sp.fac, hf, fine.heat);
             let (hr, dr) = (h - hf, d - df);
-            let rest = kin_for(hr, dr);
+            let rest = self.kin(hr, dr);
             let rest_fac = self.factors(sp.fac, hr, rest.heat);
             (fine, fine_fac, rest, rest_fac)
         });

@@ -334,9 +334,8 @@ fn march_group<const LAT: bool>(
             t1[l] = tr[1] * scale;
             let dux = du0[l] - lx * (t0[l] - o[0][l]);
             let duy = du1[l] - ly * (t1[l] - o[1][l]);
-            // the trapezoid of the start and end stresses (kin::trapezoid_stress)
-            let (w0, w1) = (0.5 * (t0[l] + o[0][l]), 0.5 * (t1[l] + o[1][l]));
-            q[l] = ((w0 * dux + w1 * duy) * inv_h[l]).max(0.0);
+            let tw = super::kin::trapezoid_stress([t0[l], t1[l]], [o[0][l], o[1][l]]);
+            q[l] = ((tw[0] * dux + tw[1] * duy) * inv_h[l]).max(0.0);
             // trapezoid: node k at x_k = a xi_k (phase 0)
             let wk = w * dxi[l];
             sx[l] += wk * t0[l];
