@@ -2,6 +2,7 @@
 
 import json
 import os
+import re
 import subprocess
 
 import pytest
@@ -31,6 +32,17 @@ def ecf(repo_root):
 
 def vr(md, name):
     return next(v.valueReference for v in md.modelVariables if v.name == name)
+
+
+def rel_tol_start(md):
+    return next(v.start for v in md.modelVariables if v.name == "rel_tol")
+
+
+def cli_grid(stderr):
+    """[nx, ny] of the grid `ecf --tol` reports having chosen."""
+    m = re.search(r"grid (\d+)x(\d+)", stderr)
+    assert m, stderr
+    return [int(m[1]), int(m[2])]
 
 
 def new(md, unzipdir, name):
@@ -64,8 +76,11 @@ def steady(s, md, cx, v=20.0, fn=110e3):
 
 @pytest.mark.parametrize("preset", PRESETS)
 def test_start_values_then_preset_equal_ecf_curve(md, unzipdir, ecf, preset):
+    # the grid: the one the start value of rel_tol chooses (ECF), which --tol gives the CLI
+    tol = ["--tol", str(rel_tol_start(md))] if preset not in ("fastsim", "polach") else []
     cli = subprocess.run([ecf, "curve", "--preset", preset, "--v-mps", "20", "--fn-kn", "110",
-                          "--cx", "0.003,0.05"], capture_output=True, text=True, check=True)
+                          "--cx", "0.003,0.05"] + tol, capture_output=True, text=True, check=True)
+    grid = cli_grid(cli.stderr) if tol else None
     rows = [line.split(",") for line in cli.stdout.strip().splitlines()]
     for row in rows[1:]:
         ref = dict(zip(rows[0], row))
@@ -81,6 +96,8 @@ def test_start_values_then_preset_equal_ecf_curve(md, unzipdir, ecf, preset):
                 write_start_values(s, md, reverse=(order == "reverse"))
                 s.setString([vr(md, "preset")], [preset])
             o = steady(s, md, cx)
+            if grid:
+                assert s.getInteger([vr(md, "nx"), vr(md, "ny")]) == grid, (preset, order)
             # the CLI prints f with 8 decimals, Fx, T_max and P_fric with 3
             assert abs(o["f"] - float(ref["f"])) <= 0.51e-8, (preset, order, cx, o, ref)
             assert abs(o["Fx"] - float(ref["Fx_N"])) <= 0.51e-3, (preset, order, cx, o["Fx"], ref["Fx_N"])
@@ -90,8 +107,11 @@ def test_start_values_then_preset_equal_ecf_curve(md, unzipdir, ecf, preset):
 
 
 def test_single_material_override_beside_start_values(md, unzipdir, ecf):
+    # wet with a changed parameter: the start value of rel_tol judges it on every preset's rows
     cli = subprocess.run([ecf, "curve", "--preset", "wet", "--param", "tau_c2_0_GPa=0.5", "--v-mps", "20",
-                          "--fn-kn", "110", "--cx", "0.05"], capture_output=True, text=True, check=True)
+                          "--fn-kn", "110", "--cx", "0.05", "--tol", str(rel_tol_start(md))],
+                         capture_output=True, text=True, check=True)
+    assert "worst of dry, table4.1, wet" in cli.stderr, cli.stderr
     head, row = [line.split(",") for line in cli.stdout.strip().splitlines()]
     ref = dict(zip(head, row))
     s = new(md, unzipdir, "override")

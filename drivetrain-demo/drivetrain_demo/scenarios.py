@@ -147,12 +147,14 @@ def condition_mu(preset: str, fmu_path=None) -> float:
 
 
 def ecf_adhesion_max(preset: str, fmu_path=None, v=5.0, F_N=110e3, T_bulk=20.0) -> float:
-    """Maximum of the steady ECF curve f(c_x), c_x in 0-60 %, for a condition (FMU default grid)."""
+    """Maximum of the steady ECF curve f(c_x), c_x in 0-60 %, for a condition (on the presets' grid
+    80x21, given explicitly: the FMU's own default is the grid its rel_tol chooses)."""
     path = contact.find_fmu(fmu_path)
     if path is None:
         raise FMUNotFoundError("the condition-matched FASTSIM mu needs the contact FMU (scripts/build-fmu.sh)")
     cx = np.concatenate([np.linspace(0.005, 0.1, 39), np.linspace(0.11, 0.6, 50)])
-    f = contact.steady_curve_fmu(path, cx, model="ecf", v=v, F_N=F_N, T_bulk=T_bulk, preset=preset)
+    f = contact.steady_curve_fmu(path, cx, model="ecf", v=v, F_N=F_N, T_bulk=T_bulk, preset=preset,
+                                 grid=(80, 21))
     return float(np.max(f))
 
 

@@ -569,6 +569,7 @@ impl ModelArgs {
         let explicit_scheme = scheme.flatten();
         let grid = self.grid.as_ref().map(|_| cfg.grid);
         let filter = Filter {
+            preset: tolerance::scope_of(cfg),
             nx: grid.map(|g| g.nx),
             ny: grid.map(|g| g.ny),
             scheme: if steady {

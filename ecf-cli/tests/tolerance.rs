@@ -4,6 +4,14 @@ use creep_core::tolerance::{self, Filter};
 mod common;
 use common::ecf;
 
+/// The choice for the dry preset unchanged: judged on its own rows.
+const DRY: Filter = Filter {
+    preset: Some("dry"),
+    nx: None,
+    ny: None,
+    scheme: None,
+};
+
 /// A short dry creepage step at 5 m/s with 1 ms steps, plus `extra` flags.
 fn step(extra: &[&str]) -> (i32, String, String) {
     let mut a = vec![
@@ -29,7 +37,7 @@ fn step(extra: &[&str]) -> (i32, String, String) {
 fn tol_runs_on_the_grid_and_scheme_the_table_gives_and_says_which() {
     // a loose and a tight tolerance: the library's choice, not a hard-coded grid
     for tol in [0.05, 0.006] {
-        let c = tolerance::choose(tol, 5.0, Some(1e-3), Filter::default()).expect("choice");
+        let c = tolerance::choose(tol, 5.0, Some(1e-3), DRY).expect("choice");
         let t = tol.to_string();
         let (code, out, err) = step(&["--tol", &t]);
         assert_eq!(code, 0, "{err}");
@@ -49,7 +57,7 @@ fn tol_runs_on_the_grid_and_scheme_the_table_gives_and_says_which() {
 
 #[test]
 fn explicit_grid_and_scheme_override_tol() {
-    let loose = tolerance::choose(0.5, 5.0, Some(1e-3), Filter::default()).expect("choice");
+    let loose = tolerance::choose(0.5, 5.0, Some(1e-3), DRY).expect("choice");
     assert_ne!((loose.nx, loose.ny), (80, 7), "the test needs another grid");
     let (_, plain, _) = step(&["--grid", "80x7"]);
     let (code, out, err) = step(&["--tol", "0.5", "--grid", "80x7"]);
@@ -63,7 +71,7 @@ fn explicit_grid_and_scheme_override_tol() {
         Filter {
             nx: Some(80),
             ny: Some(7),
-            scheme: None,
+            ..DRY
         },
     )
     .expect("80x7 is tabulated");
@@ -99,7 +107,7 @@ fn a_tolerance_no_grid_meets_is_a_warning_with_the_error_reached() {
         None,
         Filter {
             scheme: Some(Scheme::CellsMarch),
-            ..Filter::default()
+            ..DRY
         },
     )
     .expect("choice");
@@ -113,6 +121,27 @@ fn a_tolerance_no_grid_meets_is_a_warning_with_the_error_reached() {
         err.contains("warning")
             && err.contains("NOT met")
             && err.contains(&format!("grid {}x{}", c.nx, c.ny)),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_preset_unchanged_is_judged_on_its_rows_and_a_changed_one_on_every_preset() {
+    let own = tolerance::choose(0.01, 5.0, Some(1e-3), DRY).expect("choice");
+    let all = tolerance::choose(0.01, 5.0, Some(1e-3), Filter::default()).expect("choice");
+    let (code, _, err) = step(&["--tol", "0.01"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("worst of dry, steps") && err.contains(&format!("{:.2} %", own.fx_err_pct)),
+        "{err}"
+    );
+    // a parameter changed: no longer the tabulated preset
+    let (code, _, err) = step(&["--tol", "0.01", "--param", "tau_c2_0_GPa=1.2"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("worst of dry, table4.1, wet")
+            && err.contains(&format!("grid {}x{}", all.nx, all.ny))
+            && err.contains(&format!("{:.2} %", all.fx_err_pct)),
         "{err}"
     );
 }

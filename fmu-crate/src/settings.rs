@@ -185,8 +185,10 @@ pub struct Settings {
     pub threads: usize,
     /// How a step advances the bristles: 0 cell by cell, 1 continuous.
     pub scheme: i32,
-    /// Relative tolerance on F_x that chooses the grid and scheme at initialization (fraction; 0 = off).
-    pub rel_tol: f64,
+    /// Relative tolerance on F_x that chooses the grid and scheme at initialization
+    /// (fraction; 0 = off), if set to a value other than its start value
+    /// [`DEFAULT_REL_TOL`]; see [`Settings::rel_tol`].
+    pub rel_tol: Option<f64>,
     /// Geometry mode: 0 configuration, 1 semi-axes, 2 curvatures.
     pub geometry: i32,
     /// Geometry values set by the importer, in the order of [`Geo::ALL`], SI.
@@ -205,7 +207,44 @@ fn geo_of(geometry: Geometry, g: Geo) -> Option<f64> {
     }
 }
 
+/// The start value of `rel_tol`: 2 %, the tolerance whose choice runs in real time at 20 m/s
+/// with 0.25 ms steps for each of dry, table4.1 and wet (docs/fmu.md, "Grid and scheme for a
+/// tolerance").
+pub const DEFAULT_REL_TOL: f64 = 0.02;
+
 impl Settings {
+    /// The tolerance in force: the value set; at the start value, [`DEFAULT_REL_TOL`] unless
+    /// the grid is given, by both `nx` and `ny` or by the configuration file's `grid` (an
+    /// explicit grid is the user's: the default tolerance does not apply, so neither the
+    /// grid nor the scheme changes; a value set by the user does, among the table's rows
+    /// with that grid). `resources`: where a relative configuration file is.
+    pub fn rel_tol(&self, resources: Option<&Path>) -> f64 {
+        match self.rel_tol {
+            Some(x) => x,
+            None if self.nx.is_some() && self.ny.is_some() => 0.0,
+            None if self.file_names_grid(resources) => 0.0,
+            None => DEFAULT_REL_TOL,
+        }
+    }
+
+    /// True if the configuration file, if any, has a `grid` (an unreadable file: false; its
+    /// error is reported where the configuration is resolved).
+    fn file_names_grid(&self, resources: Option<&Path>) -> bool {
+        if self.config_file.is_empty() {
+            return false;
+        }
+        config_path(resources, &self.config_file)
+            .ok()
+            .and_then(|p| std::fs::read_to_string(p).ok())
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+            .is_some_and(|v| v.get("grid").is_some())
+    }
+
+    /// The value `rel_tol` reads back: as set, else its start value.
+    pub fn rel_tol_value(&self) -> f64 {
+        self.rel_tol.unwrap_or(DEFAULT_REL_TOL)
+    }
+
     /// Checks the settings like the set calls do (for a deserialized state).
     pub fn validate(&self) -> Result<(), String> {
         let mut scratch = params::Params::default();
@@ -214,11 +253,9 @@ impl Settings {
                 .set(*p, *x)
                 .map_err(|e| format!("parameters: {e}"))?;
         }
-        if !(self.rel_tol == 0.0 || (self.rel_tol > 0.0 && self.rel_tol <= 1.0)) {
-            return Err(format!(
-                "rel_tol = {} (must be 0 or within (0, 1])",
-                self.rel_tol
-            ));
+        let rt = self.rel_tol_value();
+        if !(rt == 0.0 || (rt > 0.0 && rt <= 1.0)) {
+            return Err(format!("rel_tol = {rt} (must be 0 or within (0, 1])"));
         }
         if !(0..=2).contains(&self.geometry) {
             return Err(format!("geometry = {} (must be 0, 1 or 2)", self.geometry));
@@ -328,7 +365,7 @@ impl Settings {
             (Slot::Ny, Value::Integer(x)) => self.ny = (*x > 0).then_some(*x as usize),
             (Slot::Threads, Value::Integer(x)) => self.threads = (*x).max(1) as usize,
             (Slot::Scheme, Value::Integer(x)) => self.scheme = *x,
-            (Slot::RelTol, Value::Real(x)) => self.rel_tol = *x,
+            (Slot::RelTol, Value::Real(x)) => self.rel_tol = (*x != DEFAULT_REL_TOL).then_some(*x),
             (Slot::Effect(e), Value::Boolean(x)) => {
                 if v.start == Start::Boolean(*x) {
                     self.effects.remove(&e);
@@ -373,7 +410,7 @@ impl Settings {
             Slot::GeometryMode => Value::Integer(self.geometry),
             Slot::Threads => Value::Integer(self.threads.max(1) as i32),
             Slot::Scheme => Value::Integer(self.scheme),
-            Slot::RelTol => Value::Real(self.rel_tol),
+            Slot::RelTol => Value::Real(self.rel_tol_value()),
             Slot::Nx | Slot::Ny => match cfg() {
                 Ok(c) => Value::Integer(if v.slot == Slot::Nx {
                     c.grid.nx
@@ -461,28 +498,33 @@ impl Settings {
 
     /// The grid and scheme that `rel_tol` chooses at speed `v` (m/s), None when rel_tol = 0
     /// or the model is not ECF (the table is measured for it). Explicit nx, ny and scheme = 1
-    /// restrict the choice to the table's rows with them; Err when the table has none.
+    /// restrict the choice to the table's rows with them; when the table has none, Err for
+    /// a value set by the user, None for the start value.
     pub fn tolerance_choice(
         &self,
         cfg: &Config,
         v: f64,
+        resources: Option<&Path>,
     ) -> Option<Result<creep_core::tolerance::Choice, String>> {
-        if self.rel_tol <= 0.0 || cfg.model != ModelKind::Ecf {
+        let rel_tol = self.rel_tol(resources);
+        if rel_tol <= 0.0 || cfg.model != ModelKind::Ecf {
             return None;
         }
         let filter = creep_core::tolerance::Filter {
+            preset: creep_core::tolerance::scope_of(cfg),
             nx: self.nx,
             ny: self.ny,
             scheme: (self.scheme == 1).then_some(Scheme::Continuous),
         };
-        Some(
-            creep_core::tolerance::choose(self.rel_tol, v, None, filter).map_err(|e| {
-                format!(
-                    "rel_tol = {}: {e}; the explicit settings are used",
-                    self.rel_tol
-                )
-            }),
-        )
+        match creep_core::tolerance::choose(rel_tol, v, None, filter) {
+            Ok(c) => Some(Ok(c)),
+            // the start value is no request: with explicit settings the table lacks, they
+            // are used as they are, without a word
+            Err(_) if self.rel_tol.is_none() => None,
+            Err(e) => Some(Err(format!(
+                "rel_tol = {rel_tol}: {e}; the explicit settings are used"
+            ))),
+        }
     }
 
     /// Resolves the configuration: preset or file (relative paths against `resources`),
@@ -533,7 +575,7 @@ impl Settings {
         if cfg.model == ModelKind::Fastsim && !cfg.effects.has(Effect::Coulomb) {
             return Err("model fastsim needs effect_coulomb = true".into());
         }
-        if let Some(Ok(c)) = self.tolerance_choice(&cfg, v) {
+        if let Some(Ok(c)) = self.tolerance_choice(&cfg, v, resources) {
             cfg.grid = Grid { nx: c.nx, ny: c.ny };
         }
         Ok(cfg)

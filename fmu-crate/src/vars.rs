@@ -16,6 +16,7 @@
 //! * another parameter: a [`Var`] in [`table`] with a new [`Slot`], and what it does in
 //!   `settings.rs` (check, apply, get, and its use in `Settings::resolve`).
 
+use crate::settings::DEFAULT_REL_TOL;
 use creep_core::config::DEFAULT_GEOMETRY;
 use creep_core::effects::{self, Effect};
 use creep_core::engine::io::{input_spec, InputId, OutputSpec, INPUTS, N_OUTPUTS, OUTPUTS};
@@ -710,8 +711,8 @@ pub fn table() -> Vec<Var> {
         kind: Kind::Real,
         causality: Parameter,
         unit: None,
-        description: "relative tolerance on F_x, a fraction (0.01 = 1 %), ECF model only; 0 (default) = off: the grid comes from nx, ny and the preset. > 0: at fmi2ExitInitializationMode the grid and scheme are the cheapest in the accuracy benchmark's table (creep-core/data/accuracy.csv) whose largest F_x error, worst over its presets and cases at the nearest tabulated speed not below |v| (the value of v then), meets it, else the most accurate (with a warning); nx, ny and scheme = 1 set explicitly override it (docs/fmu.md)".into(),
-        start: Start::Real(0.0),
+        description: format!("relative tolerance on F_x, a fraction (0.01 = 1 %), ECF model only (FASTSIM, Polach: ignored). > 0: at fmi2ExitInitializationMode the grid and scheme are the cheapest in the accuracy benchmark's table (creep-core/data/accuracy.csv) whose largest F_x error, measured for the preset (unchanged; else the worst over dry, table4.1 and wet) at the nearest tabulated speed not below |v| (the value of v then), meets it, else the cheapest that cannot be ranked below the most accurate (with a warning). Start {DEFAULT_REL_TOL}: real time at 20 m/s with 0.25 ms steps; it does not apply when nx and ny are both given. 0 = off: the grid comes from nx, ny and the preset (80 x 21). A value set explicitly with nx, ny or scheme = 1 chooses among the table's rows with them (docs/fmu.md)"),
+        start: Start::Real(DEFAULT_REL_TOL),
         min: Some(0.0),
         max: Some(1.0),
         slot: Slot::RelTol,

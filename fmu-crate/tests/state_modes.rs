@@ -99,6 +99,9 @@ fn every_state_the_fmu_hands_out_reloads() {
     // after a refused step fmi2SetFMUstate to the state before it makes the instance usable
     // again.
     let mut a = Fmu::new("modes_reload");
+    // on the preset's grid (80 x 21), where this runaway was found: the start value of
+    // rel_tol would choose 10 x 3 cells, on which its steady state is not finite (NaN)
+    assert_eq!(a.set_real("rel_tol", 0.0), OK);
     assert_eq!(a.set_string("preset", "twin_disc"), OK);
     assert_eq!(a.set_bool("effect_coulomb", true), OK);
     assert_eq!(a.set_real("L_e_T_per_C", 0.1), OK);

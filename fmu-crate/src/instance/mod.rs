@@ -453,14 +453,19 @@ impl Instance {
     /// for the explicit settings, or when the model is not ECF.
     fn log_tolerance_choice(&mut self) -> Status {
         const F: &str = "fmi2ExitInitializationMode";
-        if self.settings.rel_tol <= 0.0 {
+        let tol = self.settings.rel_tol(self.resources.as_deref());
+        if tol <= 0.0 {
             return Status::Ok;
         }
         let Some(cfg) = self.model.as_ref().map(|m| m.config().clone()) else {
             return Status::Ok;
         };
-        let tol = self.settings.rel_tol;
-        match self.settings.tolerance_choice(&cfg, self.speed()) {
+        match self
+            .settings
+            .tolerance_choice(&cfg, self.speed(), self.resources.as_deref())
+        {
+            // the start value is no request: FASTSIM and Polach ignore it silently
+            None if self.settings.rel_tol.is_none() => Status::Ok,
             None => self.warn(format!(
                 "{F}: rel_tol = {tol} is ignored: the accuracy table is measured for the ECF model, not {}; the grid comes from nx, ny and the configuration",
                 cfg.model.name()
@@ -468,7 +473,8 @@ impl Instance {
             Some(Err(e)) => self.warn(format!("{F}: {e}")),
             Some(Ok(c)) => {
                 let text = format!("{F}: rel_tol = {tol} at v = {} m/s: {}", self.speed(), c.message());
-                if c.met {
+                // the start value is no request: not met, it is said as an event
+                if c.met || self.settings.rel_tol.is_none() {
                     self.event(text);
                     Status::Ok
                 } else {

@@ -107,10 +107,14 @@ impl Instance {
         if rebuild {
             self.model = Some(Model::new(&cfg).map_err(|e| e.to_string())?);
         }
-        self.tol_scheme = match self.settings.tolerance_choice(&cfg, self.speed()) {
-            Some(Ok(c)) => Some(c.scheme),
-            _ => None,
-        };
+        self.tol_scheme =
+            match self
+                .settings
+                .tolerance_choice(&cfg, self.speed(), self.resources.as_deref())
+            {
+                Some(Ok(c)) => Some(c.scheme),
+                _ => None,
+            };
         self.apply_how_to_compute()?;
         let inputs = core_inputs(&self.inputs);
         let extra = self.extras(&cfg)?;
@@ -314,7 +318,7 @@ impl Instance {
                 self.inputs[i.index()] = x;
                 self.model_current = false;
                 if i == In::Core(InputId::V)
-                    && self.settings.rel_tol > 0.0
+                    && self.settings.rel_tol(self.resources.as_deref()) > 0.0
                     && matches!(self.phase, Phase::Instantiated | Phase::Initialization)
                 {
                     // rel_tol chooses the grid at the speed the initialization ends with

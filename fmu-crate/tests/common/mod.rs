@@ -240,3 +240,20 @@ impl Drop for Fmu {
         unsafe { fmi2FreeInstance(self.c) };
     }
 }
+
+/// The grid the FMU runs `cfg` on when neither nx, ny nor the configuration file set it: the
+/// one the start value of `rel_tol` chooses at speed `v` (m/s) for the ECF model (from the
+/// preset's own rows when `cfg` is a tabulated preset unchanged), else the configuration's.
+#[allow(dead_code)]
+pub fn default_grid(cfg: &creep_core::Config, v: f64) -> creep_core::config::Grid {
+    use creep_core::tolerance::{choose, scope_of, Filter};
+    if cfg.model != creep_core::ModelKind::Ecf {
+        return cfg.grid;
+    }
+    let f = Filter {
+        preset: scope_of(cfg),
+        ..Filter::default()
+    };
+    let c = choose(ecf_contact::settings::DEFAULT_REL_TOL, v, None, f).expect("choice");
+    creep_core::config::Grid { nx: c.nx, ny: c.ny }
+}
