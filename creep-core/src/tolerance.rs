@@ -222,7 +222,7 @@ pub struct Choice {
     pub ny: usize,
     /// Scheme.
     pub scheme: Scheme,
-    /// Tabulated largest F_x error (%), the worst over the presets and cases at `v_tab`.
+    /// Tabulated largest F_x error (%), the worst over the cases in scope at `v_tab`.
     pub fx_err_pct: f64,
     /// Tabulated largest error of the T_max rise (%), worst over the same rows (shown, not used).
     pub trise_err_pct: f64,

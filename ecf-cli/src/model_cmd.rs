@@ -77,9 +77,12 @@ pub(crate) struct ModelArgs {
     grid: Option<String>,
     /// Relative tolerance on F_x, a fraction (0.01 = 1 %), ECF model only: the grid (and, for
     /// step and sine, the scheme) is the cheapest in the accuracy benchmark's table whose
-    /// largest F_x error, worst over its presets and cases at the nearest tabulated speed not
-    /// below |--v-mps|, meets it (else the most accurate, with a warning); --grid and
-    /// --scheme override it. The choice is printed on stderr. Default: off (the preset's grid)
+    /// largest F_x error over its cases at the nearest tabulated speed not below |--v-mps|
+    /// (those of the preset when it is a tabulated one unchanged, else the worst over dry,
+    /// table4.1 and wet) meets it (else the cheapest that cannot be ranked below the most
+    /// accurate, with a warning); --grid and --scheme override it. The choice is printed on
+    /// stderr (docs/fmu.md, "Grid and scheme for a tolerance"). Default: off (the preset's
+    /// grid)
     #[arg(long, value_parser = parse_tol)]
     tol: Option<f64>,
     /// Lateral creepage, dimensionless
