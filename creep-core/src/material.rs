@@ -324,11 +324,26 @@ impl Resolved {
 }
 
 impl Resolved {
-    /// The largest temperature coefficient of tau_c1, tau_c2, L_p (1/K): the release
-    /// damping's gain (docs/model.md, section 6).
+    /// The temperature coefficient X (1/K) in the gain of the elastic-release loop that the
+    /// release weight theta bounds (docs/model.md, section 6): the largest coefficient of
+    /// the strengths a move's stress follows over its whole temperature rise.
+    /// * [`Rule::SameCharacteristic`] (the default): tau_c2's and L_p's. A move that crosses
+    ///   the yield surface yields at tau_c1 of its heat history's temperature, fixed during
+    ///   the temperature solve; tau_c1(T) enters only as the floor max(tau_c1(T), Voce) of a
+    ///   bristle riding on the yield surface, over a bounded temperature range
+    ///   ((tau_c1 - t_Voce) / (tau_c1 X_c1), a fraction of a kelvin) and so with bounded
+    ///   release heat. With tau_c1's coefficient in X (the rule before issue 24's last step),
+    ///   theta damped hardening and sliding bristles of dry (tau_c1 0.034 /K against tau_c2
+    ///   0.0025 /K) and wet (0.55 against 0.0015 /K) by a weight that depends on the cell
+    ///   length: the fine grids drifted (dry, 20 m/s, c_x 1.06 %: +1.8 % on 640 cells).
+    /// * [`Rule::ElasticUnloading`] (effects `elastic_unloading`, `coulomb`): the plastic part
+    ///   of a crossing starts at tau_c1(T), so tau_c1's coefficient too.
     #[inline]
-    pub(crate) fn cmax_t(&self) -> f64 {
-        self.tc1_t.max(self.tc2_t).max(self.lp_t)
+    pub(crate) fn release_t(&self) -> f64 {
+        match self.rule {
+            Rule::SameCharacteristic => self.tc2_t.max(self.lp_t),
+            Rule::ElasticUnloading => self.tc1_t.max(self.tc2_t).max(self.lp_t),
+        }
     }
 
     /// True if the layer's parameters only soften it as it heats (tau_c1, tau_c2 fall and

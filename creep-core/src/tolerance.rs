@@ -610,8 +610,8 @@ mod tests {
                 assert!(m.contains("the most accurate one is used"), "{m}");
             }
         }
-        // the table has a speed whose limit is uncertain enough to matter (the dry sine at
-        // 20 m/s) and one where the most accurate row is the choice
+        // the table has a speed where the limit's uncertainty exceeds the gap between the
+        // most accurate rows, so that rule 5 is exercised
         assert!(cheaper_than_best > 0);
     }
 

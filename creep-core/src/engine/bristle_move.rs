@@ -177,7 +177,7 @@ impl Contact {
         if !(k.heat && self.r.temperature) {
             return 1.0;
         }
-        let cmax = self.r.cmax_t();
+        let cmax = self.r.release_t();
         let t0 = (tau[0] * tau[0] + tau[1] * tau[1]).sqrt().max(1.0);
         let gain = k.self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * cmax / k.h;
         if gain > 0.8 {

@@ -329,14 +329,18 @@ fn bad_rel_tol_is_refused_with_a_message_and_the_value_kept() {
 #[test]
 fn the_default_rel_tol_runs_in_real_time_at_20_m_s_and_an_explicit_grid_turns_it_off() {
     use creep_core::tolerance::{self, Filter};
-    // the table's cost of the default choice at 20 m/s with 0.25 ms steps, for each preset
+    // the table's cost of the default choice at 20 m/s with 0.25 ms steps: below real time
+    // for the FMU's default preset table4.1 and for wet (dry needs 40x5 cells for 2 %, 1.8x)
     for p in ["table4.1", "dry", "wet"] {
         let f = Filter {
             preset: Some(p),
             ..Filter::default()
         };
         let c = tolerance::choose(DEFAULT_REL_TOL, 20.0, Some(2.5e-4), f).expect("choice");
-        assert!(c.cost < 1.0, "{p}: {c:?}");
+        assert!(c.met, "{p}: {c:?}");
+        if p != "dry" {
+            assert!(c.cost < 1.0, "{p}: {c:?}");
+        }
         // and the FMU with nothing set but the preset and v runs on that grid
         let mut i = Instance::new("t", None, true);
         assert_eq!(i.set_string(vr("preset"), p), Status::Ok);
@@ -344,8 +348,6 @@ fn the_default_rel_tol_runs_in_real_time_at_20_m_s_and_an_explicit_grid_turns_it
         assert_eq!(i.enter_initialization(), Status::Ok);
         let st = i.exit_initialization();
         let logs = i.take_logs();
-        // not met (dry: its sine's limit is uncertain by 2.3 %): an event, not a warning,
-        // since nobody asked for this tolerance
         assert_eq!(st, Status::Ok, "{p}: {logs:?}");
         assert_eq!(i.get_integer(vr("nx")), Ok(c.nx as i32), "{p}");
         assert_eq!(i.get_integer(vr("ny")), Ok(c.ny as i32), "{p}");
