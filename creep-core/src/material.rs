@@ -332,7 +332,7 @@ impl Resolved {
     ///   the temperature solve; tau_c1(T) enters only as the floor max(tau_c1(T), Voce) of a
     ///   bristle riding on the yield surface, over a bounded temperature range
     ///   ((tau_c1 - t_Voce) / (tau_c1 X_c1), a fraction of a kelvin) and so with bounded
-    ///   release heat. With tau_c1's coefficient in X (the rule before issue 24's last step),
+    ///   release heat. With tau_c1's coefficient in X (the rule before issue 24 step 7),
     ///   theta damped hardening and sliding bristles of dry (tau_c1 0.034 /K against tau_c2
     ///   0.0025 /K) and wet (0.55 against 0.0015 /K) by a weight that depends on the cell
     ///   length: the fine grids drifted (dry, 20 m/s, c_x 1.06 %: +1.8 % on 640 cells).
