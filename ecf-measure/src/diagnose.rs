@@ -147,7 +147,12 @@ fn first_sentence(text: &str) -> &str {
 /// (examples/measurements/humid.csv with dry.json) every held-out and fitted CV(RMSE) moves
 /// by less than 2e-4 percentage points (printed: 0.01) and the report is unchanged, while the
 /// steady model calls fall from 48,768 to 27,360. 1e-4 moves a held-out error by 0.01.
-pub const FIT_TOLERANCE: f64 = 1e-6;
+/// Since issue 24 step 7 (the release weight's X) the dry model let a 1e-6 fit move one
+/// candidate's held-out error by 2.5e-3 percentage points on a 10 x 5 grid (test
+/// `the_looser_fit_tolerance_changes_no_printed_figure`, bound 1e-3); 1e-7 keeps it within
+/// the bound and costs about 4 % more wall time on the worked example (3.53 -> 3.67 s,
+/// same printed figures).
+pub const FIT_TOLERANCE: f64 = 1e-7;
 
 /// Runs the diagnosis. `progress` receives a short text per stage.
 pub fn diagnose(
