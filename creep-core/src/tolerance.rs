@@ -469,14 +469,21 @@ fn describe(f: Filter) -> String {
 }
 
 /// The tabulated preset that `cfg` is, unchanged (rule 2): its name if the table has rows of
-/// it and `cfg` has that preset's model, effects, parameters, Coulomb bound and modifiers
-/// (grid and geometry may differ); None otherwise (the choice then takes the worst over all
-/// presets).
+/// it and `cfg` has that preset's model, effects (`transient` may be off), parameters,
+/// Coulomb bound and modifiers (grid and geometry may differ); None otherwise (the choice
+/// then takes the worst over all presets).
 pub fn scope_of(cfg: &crate::Config) -> Option<&'static str> {
+    use crate::effects::Effect;
     let row = table().ok()?.iter().find(|r| r.preset == cfg.preset)?;
     let p = crate::Config::preset(&row.preset).ok()?;
+    // `transient` off makes every step the steady state of the same model (quasi-steady),
+    // whose error is the settled error the table's responses end with: the same preset
+    let mut effects = cfg.effects;
+    if p.effects.has(Effect::Transient) {
+        effects.insert(Effect::Transient);
+    }
     (p.model == cfg.model
-        && p.effects == cfg.effects
+        && p.effects == effects
         && p.params == cfg.params
         && p.bound == cfg.bound
         && p.modifiers == cfg.modifiers)
@@ -626,6 +633,11 @@ mod tests {
             let mut g = cfg.clone();
             g.grid = crate::config::Grid { nx: 17, ny: 3 };
             assert_eq!(scope_of(&g), Some(p));
+            // nor does the quasi-steady switch; another effect does
+            g.effects.remove(crate::effects::Effect::Transient);
+            assert_eq!(scope_of(&g), Some(p));
+            g.effects.insert(crate::effects::Effect::ElasticUnloading);
+            assert_eq!(scope_of(&g), None);
             // a changed parameter does
             let mut q = cfg.clone();
             let tc2 = q.params.get(crate::params::P::Tc20);
