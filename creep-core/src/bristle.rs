@@ -151,6 +151,108 @@ pub struct Move {
     /// branch, Pa: that of the temperature it has while elastic (it makes no heat before it
     /// crosses), set by [`Move::set_cold_yield`]; NaN: the move's material's own tau_c1.
     cold_tc1: f64,
+    /// The start of the move's material under the higher-order rules
+    /// ([`crate::engine::Scheme::CellsHigher`]; [`Along::END`]: the end material over the
+    /// whole move). Set per trial temperature ([`Move::set_along`]).
+    along: Cell<Along>,
+}
+
+/// How tau_c2 and L_p vary along a move under the higher-order rules
+/// ([`crate::engine::Scheme::CellsHigher`], docs/model.md section 9, step 8): tau_c2 linear
+/// from the start material's to the end material's, 1/L_p from the start's to the end's
+/// along the move's temperature profile (or exponentially in s without one). NaN fields:
+/// the end material over the whole move (Eq. 4.7 as the seed writes it per cell).
+#[derive(Clone, Copy, Debug)]
+pub struct Along {
+    /// tau_c2 of the start material (the start position at the bristle's temperature at the
+    /// start of the move), Pa.
+    pub tc2_start: f64,
+    /// L_p of the start material, m.
+    pub lp_start: f64,
+    /// The temperature along the move, T(s) - T_start = A sqrt(s/h) + B s/h, (A, B) in K:
+    /// A the self-heating of the jump of the heat rate at the start of the move, B the rest.
+    pub t_prof: (f64, f64),
+}
+
+impl Along {
+    /// The end material over the whole move.
+    pub const END: Along = Along {
+        tc2_start: f64::NAN,
+        lp_start: f64::NAN,
+        t_prof: (f64::NAN, f64::NAN),
+    };
+}
+
+/// 4-point Gauss-Legendre nodes on [0, 1] (the L_p mean along a temperature profile).
+const GL4_X: [f64; 4] = [
+    0.069_431_844_202_973_7,
+    0.330_009_478_207_571_9,
+    0.669_990_521_792_428_1,
+    0.930_568_155_797_026_3,
+];
+/// Their weights.
+const GL4_W: [f64; 4] = [
+    0.173_927_422_568_726_9,
+    0.326_072_577_431_273_1,
+    0.326_072_577_431_273_1,
+    0.173_927_422_568_726_9,
+];
+
+/// The effective L_p (m) of the part of a move from fraction `lam` to 1 under the
+/// higher-order rules: 1/L_p varies from the start material's (`lp0`) to the end's (`lp1`)
+/// as exp(-k g(s)), k = ln(L_p1 / L_p0), g the shape of the temperature profile `t_prof`
+/// ([`Along::t_prof`]; 4-point Gauss-Legendre in u = sqrt(s/h)) or, without one, g = s/h
+/// (the logarithmic mean: exact for T linear in s and L_p exponential in T, Eq. 4.4).
+/// `cold`: the part starts at a cold crossing, whose L_p is the start one (the bristle
+/// makes no heat before it yields). `lp0` not finite and positive: `lp1`.
+#[inline]
+pub fn lp_mean(lp0: f64, lp1: f64, t_prof: (f64, f64), lam: f64, cold: bool) -> f64 {
+    if !(lp0.is_finite() && lp0 > 0.0) {
+        return lp1;
+    }
+    let (i0, i1) = (1.0 / lp0, 1.0 / lp1);
+    let k = (i0 / i1).ln();
+    let (ta, tb) = t_prof;
+    let dt = ta + tb;
+    if !cold && ta.is_finite() && tb.is_finite() && dt.abs() > 1e-9 && k.abs() > 1e-12 {
+        // mean over the move of i0 exp(-k (a u + b u^2)), u = sqrt(s/h), ds = 2u du; from
+        // the crossing (lam) on: the same profile over the remainder
+        let (a, b) = (ta / dt, tb / dt);
+        let u0 = lam.sqrt();
+        let mut sum = 0.0;
+        for (x, w) in GL4_X.iter().zip(GL4_W.iter()) {
+            let u = u0 + (1.0 - u0) * x;
+            sum += w * 2.0 * u * (-k * (a * u + b * u * u)).exp();
+        }
+        let mean = sum * (1.0 - u0) / (1.0 - lam).max(1e-300);
+        return 1.0 / (i0 * mean);
+    }
+    // 1/L_p exponential along the move: the logarithmic mean from lam on
+    let il = if cold { i0 } else { i0 * (i1 / i0).powf(lam) };
+    let lr = (il / i1).ln();
+    if lr.abs() < 1e-9 {
+        2.0 / (il + i1)
+    } else {
+        lr / (il - i1)
+    }
+}
+
+/// Voce hardening (Eq. 4.7) from `t0` over r = dn / L_p (decay e = exp(-r)) towards
+/// tau_c2, with tau_c2 rising linearly by `delta` (Pa) over the move to its end value `tc2`
+/// (the exact solution of dt/ds = (tau_c2(s) - t) / L_p): t = tc2 - (tc2 - t0) e -
+/// delta ((1 - e)/r - e), never above `tc2`; delta = 0: Eq. 4.7 with the end material.
+#[inline]
+pub fn harden_lin(tc2: f64, t0: f64, e: f64, r: f64, delta: f64) -> f64 {
+    let base = tc2 - (tc2 - t0) * e;
+    if !delta.is_finite() || delta == 0.0 || r.is_nan() || r <= 0.0 {
+        return base;
+    }
+    let phi = if r < 1e-4 {
+        r * (0.5 - r * (1.0 / 3.0 - r * 0.125))
+    } else {
+        -(-r).exp_m1() / r - e
+    };
+    (base - delta * phi).min(tc2)
 }
 
 impl Move {
@@ -178,6 +280,7 @@ impl Move {
             dir,
             decay: Cell::new((f64::NAN, f64::NAN)),
             cold_tc1: f64::NAN,
+            along: Cell::new(Along::END),
         }
     }
 
@@ -192,6 +295,13 @@ impl Move {
         }
         self.cold_tc1 = tc1;
         crossing(s.tau, dtau, self.t0, tc1).unwrap_or(1.0)
+    }
+
+    /// Sets how the material varies along the move (the higher-order rules; default
+    /// [`Along::END`]).
+    #[inline]
+    pub fn set_along(&self, a: Along) {
+        self.along.set(a);
     }
 
     /// exp(-(|u1| - |u0|) / lp), the Voce decay of a hardening bristle over the move,
@@ -315,6 +425,14 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
     let span = m.tc2 - m.tc1;
     let perfectly_plastic = span <= 1e-12 * m.tc2;
     let tc1c = mv.cold_tc1;
+    // the higher-order rules (Along::END: the end material over the whole move, dlt = 0 and
+    // lp_from(..) = m.lp, the seed's operations): tau_c2 rises by dlt over the move, and
+    // lp_from(lam, cold) is the effective L_p of the part of the move from fraction lam on
+    let along = mv.along.get();
+    let dlt = m.tc2 - along.tc2_start;
+    let dlt = if dlt.is_finite() { dlt } else { 0.0 };
+    let lp_from =
+        |lam: f64, cold: bool| -> f64 { lp_mean(along.lp_start, m.lp, along.t_prof, lam, cold) };
     if tc1c.is_finite() && !perfectly_plastic {
         // elastic at the start of the move, below the yield stress of its cold state
         // ([`Move::set_cold_yield`]): elastic up to tc1c, then Voce hardening on this
@@ -331,7 +449,8 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
             s.regime = Regime::Sliding;
         } else {
             let ntr = norm([s.tau[0] + dtau[0], s.tau[1] + dtau[1]]);
-            let t = (m.tc2 - (m.tc2 - tc1c) * (-s1 / m.lp).exp())
+            let r1 = s1 / lp_from(lam, true);
+            let t = harden_lin(m.tc2, tc1c, (-r1).exp(), r1, (1.0 - lam) * dlt)
                 .max(m.tc1)
                 .min(ntr);
             let d = crossing_dir(s.tau, dtau, lam, dir);
@@ -355,7 +474,12 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
         if dn >= 0.0 {
             // Voce from s0 = voce_inv(t0) on: voce(s0 + dn) = tc2 - (tc2 - t0) exp(-dn/L_p)
             // (one exponential instead of the inverse-then-forward pair)
-            let t = m.tc2 - (m.tc2 - t0) * mv.decay(m.lp);
+            let lp = lp_from(0.0, false);
+            let t = if dlt != 0.0 || lp != m.lp {
+                harden_lin(m.tc2, t0, mv.decay(lp), dn / lp, dlt)
+            } else {
+                m.tc2 - (m.tc2 - t0) * mv.decay(m.lp)
+            };
             s.tau = [t * dir[0], t * dir[1]];
             s.regime = Regime::Plastic;
             return;
@@ -388,7 +512,10 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
             // higher, never above the elastic trial. Without this, the elastic branch below
             // restarts the Voce curve at tc1 in every move, which makes the result depend on
             // the move length (+1 % per cell, docs/model.md section 4).
-            let t = (m.tc2 - (m.tc2 - t0) * mv.decay(m.lp)).max(m.tc1).min(ntr);
+            let lp = lp_from(0.0, false);
+            let t = harden_lin(m.tc2, t0, mv.decay(lp), (n1 - n0) / lp, dlt)
+                .max(m.tc1)
+                .min(ntr);
             s.tau = [t * dir[0], t * dir[1]];
             s.regime = Regime::Plastic;
             return;
@@ -409,7 +536,13 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
         }
         let uy = [u0[0] + lam * du[0], u0[1] + lam * du[1]];
         let s1 = (n1 - norm(uy)).max(0.0);
-        let t = voce(m, s1);
+        let lp = lp_from(lam, false);
+        let t = if dlt != 0.0 || lp != m.lp {
+            let r1 = s1 / lp;
+            harden_lin(m.tc2, m.tc1, (-r1).exp(), r1, (1.0 - lam) * dlt)
+        } else {
+            voce(m, s1)
+        };
         let d = crossing_dir(s.tau, dtau, lam, dir);
         s.tau = [t * d[0], t * d[1]];
         s.regime = Regime::Plastic;

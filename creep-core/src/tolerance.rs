@@ -57,7 +57,8 @@ pub struct Row {
     pub nx: usize,
     /// Strips (-).
     pub ny: usize,
-    /// Scheme: `cells` is [`Scheme::CellsMarch`], `continuous` is [`Scheme::Continuous`].
+    /// Scheme: `cells` is [`Scheme::CellsMarch`], `continuous` is [`Scheme::Continuous`],
+    /// `cells-ho` is [`Scheme::CellsHigher`].
     pub scheme: Scheme,
     /// Largest F_x error over the response, % of the limit's largest |F_x|.
     pub fx_max_pct: f64,
@@ -76,6 +77,7 @@ pub fn scheme_name(s: Scheme) -> &'static str {
     match s {
         Scheme::Continuous => "continuous",
         Scheme::CellsMarch | Scheme::Cells => "cells",
+        Scheme::CellsHigher => "cells-ho",
     }
 }
 
@@ -145,7 +147,13 @@ pub fn parse(text: &str, name: &str) -> Result<Vec<Row>> {
         let scheme = match f[idx[6]] {
             "cells" => Scheme::CellsMarch,
             "continuous" => Scheme::Continuous,
-            s => return Err(err(ln, format!("scheme '{s}' (cells or continuous)"))),
+            "cells-ho" => Scheme::CellsHigher,
+            s => {
+                return Err(err(
+                    ln,
+                    format!("scheme '{s}' (cells, continuous or cells-ho)"),
+                ))
+            }
         };
         rows.push(Row {
             preset: f[idx[0]].to_string(),

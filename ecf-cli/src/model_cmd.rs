@@ -16,12 +16,16 @@ pub(crate) enum SchemeArg {
     /// Continuous sub-steps of up to 8 cells: 2-4x faster on 80x21 at 0.1-1 ms steps, its
     /// dependence on the time step up to about 1 %
     Continuous,
+    /// Cell by cell with higher-order rules along each move (docs/model.md section 9, step
+    /// 8): about twice the cost of cells on the same grid, more accurate at equal cost
+    CellsHo,
 }
 
 #[derive(Args, Clone)]
 pub(crate) struct TransientArgs {
-    /// How a time step advances the bristles: cells (reference) or continuous (faster; see
-    /// docs/model.md section 3). Default: cells, or the scheme --tol chooses
+    /// How a time step advances the bristles: cells (reference), continuous (faster) or
+    /// cells-ho (higher-order rules along each move; see docs/model.md sections 3 and 9).
+    /// Default: cells, or the scheme --tol chooses
     #[arg(long, value_enum)]
     scheme: Option<SchemeArg>,
 }
@@ -32,6 +36,7 @@ impl TransientArgs {
         self.scheme.map(|s| match s {
             SchemeArg::Cells => Scheme::CellsMarch,
             SchemeArg::Continuous => Scheme::Continuous,
+            SchemeArg::CellsHo => Scheme::CellsHigher,
         })
     }
 

@@ -10,6 +10,10 @@ use crate::thermal::{StepFactors, N_KERNEL};
 /// Entries of the kernel-factor cache (distinct sub-step lengths kept).
 const FAC_CACHE: usize = 8;
 
+/// Sub-moves of the move that starts at the leading edge under the higher-order rules
+/// ([`super::Scheme::CellsHigher`]), graded at (i/EDGE_SUB)^2 of the move.
+pub const EDGE_SUB: usize = 4;
+
 impl Contact {
     #[inline]
     pub(super) fn idx(&self, j: usize, slot: usize) -> usize {
@@ -51,7 +55,10 @@ impl Contact {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
-                self.move_bristle_with(j, xi, &sp.nodes[slot + 1], kin, &fac, s, ac);
+                // the move's start node (higher-order rules): lattice node `slot`, cached
+                // except at the leading edge
+                let np0 = (slot > 0).then(|| &sp.nodes[slot]);
+                self.move_bristle_with(j, xi, &sp.nodes[slot + 1], np0, kin, &fac, s, ac);
             }
         } else {
             for slot in skip..inside.min(end) {
@@ -105,11 +112,16 @@ impl Contact {
             xi_end.max(-self.ell[j] + super::grid::TRAILING_NODE * dxi),
             self.eta[j],
         );
-        self.move_bristle_with(j, xi_end, &np, kin, fac, s, acc);
+        self.move_bristle_with(j, xi_end, &np, None, kin, fac, s, acc);
     }
 
     /// [`Self::move_bristle`] with the pressure parts `np` of the end node given (the march
-    /// takes them from the per-load cache of the lattice nodes).
+    /// takes them from the per-load cache of the lattice nodes), and, where cached, those of
+    /// the start node `np0_cached` (a full-cell move from lattice node k >= 1; read by the
+    /// higher-order rules only). Under the higher-order rules the move that starts at the
+    /// leading edge is made of [`EDGE_SUB`] sub-moves ending at (i/EDGE_SUB)^2 of it: the
+    /// pressure rises like sqrt(s) there and the layer yields and heats within the first
+    /// cell (docs/model.md section 9, step 8).
     #[inline]
     #[allow(clippy::too_many_arguments)]
     fn move_bristle_with(
@@ -117,6 +129,68 @@ impl Contact {
         j: usize,
         xi_end: f64,
         np: &NodeP,
+        np0_cached: Option<&NodeP>,
+        kin: &Kin,
+        fac: &StepFactors,
+        s: &mut BristleState,
+        acc: &mut [f64; N_KERNEL],
+    ) {
+        let a = self.patch.a;
+        let xi0 = xi_end + kin.dist / a;
+        if self.ho && xi0 >= self.ell[j] - 1e-12 && kin.h > 0.0 {
+            let dxi = 2.0 * self.ell[j] / self.nx as f64;
+            let frac = |i: usize| {
+                let f = i as f64 / EDGE_SUB as f64;
+                f * f
+            };
+            for i in 1..=EDGE_SUB {
+                let df = frac(i) - frac(i - 1);
+                let (h, d) = (kin.h * df, kin.dist * df);
+                let ki = Kin {
+                    h,
+                    dist: d,
+                    self_c: if kin.heat {
+                        kin.alpha_c * 2.0 * h.sqrt()
+                    } else {
+                        0.0
+                    },
+                    ..*kin
+                };
+                let fi = if self.r.temperature && kin.heat {
+                    self.kernel.factors(h)
+                } else {
+                    StepFactors::identity(h)
+                };
+                let xe = if i == EDGE_SUB {
+                    xi_end
+                } else {
+                    xi0 - frac(i) * kin.dist / a
+                };
+                let npi = if i == EDGE_SUB {
+                    *np
+                } else {
+                    self.r.node_p(
+                        &self.patch,
+                        xe.max(-self.ell[j] + super::grid::TRAILING_NODE * dxi),
+                        self.eta[j],
+                    )
+                };
+                self.move_bristle_one(j, xe, &npi, None, &ki, &fi, s, acc);
+            }
+            return;
+        }
+        self.move_bristle_one(j, xi_end, np, np0_cached, kin, fac, s, acc);
+    }
+
+    /// One move of [`Self::move_bristle_with`] (no sub-moves).
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn move_bristle_one(
+        &self,
+        j: usize,
+        xi_end: f64,
+        np: &NodeP,
+        np0_cached: Option<&NodeP>,
         kin: &Kin,
         fac: &StepFactors,
         s: &mut BristleState,
@@ -129,10 +203,21 @@ impl Contact {
             self.eta[j] * self.patch.b
         };
         let x_mid = a * (xi_end + 0.5 * kin.dist / a);
+        // the higher-order rules' start node: pressure parts at the start of the move, clamped
+        // as the end node is
+        let np0 = self.ho.then(|| match np0_cached {
+            Some(n0) => *n0,
+            None => {
+                let dxi = 2.0 * self.ell[j] / self.nx as f64;
+                let xi0 =
+                    (xi_end + kin.dist / a).max(-self.ell[j] + super::grid::TRAILING_NODE * dxi);
+                self.r.node_p(&self.patch, xi0, self.eta[j])
+            }
+        });
         if self.fast.cold {
-            self.update_bristle_cold(kin, np, [x_mid, y], s);
+            self.update_bristle_cold(kin, np, np0.as_ref(), [x_mid, y], s);
         } else {
-            self.update_bristle(kin, np, [x_mid, y], s, acc, fac);
+            self.update_bristle(kin, np, np0.as_ref(), [x_mid, y], s, acc, fac);
         }
     }
 
@@ -140,12 +225,32 @@ impl Contact {
     /// engine/fastpath.rs `COLD`; FASTSIM, isothermal ECF): the same operations without the
     /// temperature solve and the heat kernel.
     #[inline]
-    fn update_bristle_cold(&self, k: &Kin, np: &NodeP, [x, y]: [f64; 2], s: &mut BristleState) {
+    fn update_bristle_cold(
+        &self,
+        k: &Kin,
+        np: &NodeP,
+        np0: Option<&NodeP>,
+        [x, y]: [f64; 2],
+        s: &mut BristleState,
+    ) {
         let du = k.rigid_slip([x, y]);
         let m = self.r.material_base(np, k.t_bulk);
         let (lxe, lye, dtau) = k.flex(m.le, [x, y]);
         let old = s.tau;
-        bristle::update(s, du, dtau, &m, [lxe, lye], self.r.rule);
+        match np0 {
+            // the higher-order rules: tau_c2 and L_p from the start node's to the end node's
+            Some(np0) if self.r.rule == bristle::Rule::SameCharacteristic => {
+                let mv = bristle::Move::new(s, du);
+                let m0 = self.r.material_base(np0, k.t_bulk);
+                mv.set_along(bristle::Along {
+                    tc2_start: m0.tc2,
+                    lp_start: m0.lp,
+                    t_prof: (f64::NAN, f64::NAN),
+                });
+                bristle::update_move(s, &mv, dtau, &m, [lxe, lye]);
+            }
+            _ => bristle::update(s, du, dtau, &m, [lxe, lye], self.r.rule),
+        }
         s.q = if k.heat {
             let dux = du[0] - lxe * (s.tau[0] - old[0]);
             let duy = du[1] - lye * (s.tau[1] - old[1]);
@@ -233,6 +338,7 @@ impl Contact {
                     j,
                     self.ell[j] - (k as f64 + 1.0) * dxi,
                     &nodes[k + 1],
+                    (k > 0).then(|| &nodes[k]),
                     &kin_full,
                     &fac_full,
                     &mut s,
@@ -247,7 +353,7 @@ impl Contact {
     /// preset).
     #[inline]
     pub(super) fn coulomb_path(&self) -> bool {
-        self.fast.coulomb
+        self.fast.coulomb && !self.ho
     }
 
     /// The march of [`Self::march_new`] at phase 0 for FASTSIM (see [`Self::coulomb_path`]):

@@ -6,6 +6,11 @@ use crate::bristle::{self, BristleState};
 use crate::material::NodeP;
 use crate::thermal::{self, StepFactors, N_KERNEL};
 
+/// The end stress's extra weight in the newest interval of Eq. 4.35 under the higher-order
+/// rules: for a heat rate linear over the move the exact weights of its start and end rates
+/// are 1/3 and 2/3, i.e. the mean plus 1/6 of the rise.
+const QLIN: f64 = 1.0 / 6.0;
+
 /// The state between two trial states `a` and `b` of a temperature solve, at weight `w`;
 /// only within one regime (no kink between the ends).
 fn lerp(a: &BristleState, b: &BristleState, w: f64) -> Option<BristleState> {
@@ -21,11 +26,14 @@ fn lerp(a: &BristleState, b: &BristleState, w: f64) -> Option<BristleState> {
 
 impl Contact {
     /// Advances one bristle by one sub-step; returns its heat density q (W/m^2, both bodies).
+    /// `np0`: the pressure parts at the start of the move under the higher-order rules
+    /// ([`super::Scheme::CellsHigher`]), None otherwise.
     #[inline]
     pub(super) fn update_bristle(
         &self,
         k: &Kin,
         np: &NodeP,
+        np0: Option<&NodeP>,
         [x, y]: [f64; 2],
         s: &mut BristleState,
         acc: &mut [f64; N_KERNEL],
@@ -36,7 +44,7 @@ impl Contact {
         let warm = acc[0] != 0.0;
         let t_hist = self.t_hist(k, acc, fac);
         // a layer that only softens as it heats: the scalar solve (module `softening`)
-        if self.softening_fast && k.heat {
+        if self.softening_fast && k.heat && !self.ho {
             if let Some(q) = self.update_softening(k, np, [x, y], du, t_hist, s, acc, fac) {
                 return q;
             }
@@ -85,6 +93,17 @@ impl Contact {
             }
         }
         let mv = mv;
+        // The higher-order rules (docs/model.md section 9, step 8): the start material is the
+        // start node's at the bristle's temperature at the start of the move, the same for
+        // every trial temperature; the temperature profile's sqrt(s) part is the
+        // self-heating of the jump of the heat rate at the start of the move, from the old
+        // stress over the rigid slip against the previous move's mean heat.
+        let m0 = match (np0, &mv) {
+            (Some(np0), Some(_)) => Some(self.material(np0, old.temp, u_abs, slip)),
+            _ => None,
+        };
+        let profile = self.r.temperature && k.heat;
+        let q0_rigid = (self.r.kq * (old.tau[0] * du[0] + old.tau[1] * du[1]) / k.h).max(0.0);
         let eval = |t: f64| -> (BristleState, f64) {
             let m = match m_hist {
                 Some(m) if t == t_hist => m,
@@ -96,7 +115,28 @@ impl Contact {
             };
             let mut ns = old;
             match &mv {
-                Some(mv) => bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye]),
+                Some(mv) => {
+                    if let Some(m0) = m0 {
+                        let t_prof = if profile {
+                            let dt = t - old.temp;
+                            let ta = self_c * (q0_rigid - old.q);
+                            let ta = if dt >= 0.0 {
+                                ta.clamp(0.0, dt)
+                            } else {
+                                ta.clamp(dt, 0.0)
+                            };
+                            (ta, dt - ta)
+                        } else {
+                            (f64::NAN, f64::NAN)
+                        };
+                        mv.set_along(bristle::Along {
+                            tc2_start: m0.tc2,
+                            lp_start: m0.lp,
+                            t_prof,
+                        });
+                    }
+                    bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye])
+                }
                 None => bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule),
             }
             let q = if k.heat {
@@ -113,7 +153,19 @@ impl Contact {
                 let dux = du[0] - lxe * (tr[0] - old.tau[0]);
                 let duy = du[1] - lye * (tr[1] - old.tau[1]);
                 let tw = trapezoid_stress(ns.tau, old.tau);
-                (self.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0)
+                let qbar = (self.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0);
+                if m0.is_some() {
+                    // the heat rate linear over the move from the start stress's to the end
+                    // stress's: the newest interval of Eq. 4.35 weighs its end by 2/3,
+                    // 2 sqrt(h) (qbar + (q1 - q0)/6); ns.q keeps the mean qbar (the
+                    // accumulators' piecewise-constant heat)
+                    let q1 = self.r.kq * (ns.tau[0] * dux + ns.tau[1] * duy) / k.h;
+                    let q0 = self.r.kq * (old.tau[0] * dux + old.tau[1] * duy) / k.h;
+                    ns.q = qbar;
+                    (qbar + QLIN * (q1.max(0.0) - q0.max(0.0))).max(0.0)
+                } else {
+                    qbar
+                }
             } else {
                 0.0
             };
@@ -145,6 +197,13 @@ impl Contact {
             t_hist + self_c * q
         } else {
             k.t_bulk
+        };
+        // the higher-order rules: the temperature from the end-weighted heat, the
+        // accumulators (and the friction power) from the move's mean heat
+        let q = if m0.is_some() && k.heat && q > 0.0 {
+            ns.q
+        } else {
+            q
         };
         ns.q = q;
         *s = ns;

@@ -83,14 +83,24 @@ impl Contact {
                 self.eta[j] * b
             };
             let dxi = 2.0 * self.ell[j] / nx as f64;
+            let lead = if self.ho && nx >= 3 {
+                lead_correction(self.phase[j], dxi)
+            } else {
+                [0.0; 2]
+            };
             for (slot, wk) in w.iter().enumerate() {
                 let s = &self.st[self.idx(j, slot)];
                 let da = wk * a * dy;
+                // the forces' and the power's weight: with the leading cell's term
+                let df = match slot {
+                    1 | 2 => (wk + lead[slot - 1]) * a * dy,
+                    _ => da,
+                };
                 let x = a * (self.ell[j] - (slot as f64 + self.phase[j]) * dxi);
-                fx += s.tau[0] * da;
-                fy += s.tau[1] * da;
-                mz += (x * s.tau[1] - y * s.tau[0]) * da;
-                pf += s.q * da;
+                fx += s.tau[0] * df;
+                fy += s.tau[1] * df;
+                mz += (x * s.tau[1] - y * s.tau[0]) * df;
+                pf += s.q * df;
                 if *wk > 0.0 {
                     tsum += s.temp * da;
                     area += da;
@@ -157,9 +167,58 @@ impl Contact {
     }
 }
 
+/// The leading cell's term of the quadrature under the higher-order rules (docs/model.md
+/// section 9, step 8): where the layer yields at once the stress rises like c sqrt(s) from
+/// the leading edge, and the trapezoid over the nodes at s_k = (k + ph) h (0 at the edge)
+/// misses -E(ph) c h^1.5, E(ph) = zeta(-1/2, ph) - (1 - ph) sqrt(ph) / 2 (the generalized
+/// Euler-Maclaurin formula; zeta the Hurwitz zeta function). c sqrt(h) is taken from the
+/// nodes 1 and 2 (exact for c sqrt(s) + d s). Returns the weights (normalized length, as
+/// [`Contact::weights`]) added to nodes 1 and 2; `ph` the strip's phase, `dxi` its cell.
+fn lead_correction(ph: f64, dxi: f64) -> [f64; 2] {
+    let e = hurwitz_zeta_m05(ph) - 0.5 * (1.0 - ph) * ph.sqrt();
+    let (s1, s2) = (1.0 + ph, 2.0 + ph);
+    let d = s1.sqrt() * s2 - s2.sqrt() * s1;
+    [-e * s2 / d * dxi, e * s1 / d * dxi]
+}
+
+/// The Hurwitz zeta function zeta(-1/2, q) for 0 <= q <= 1 (q = 0: zeta(-1/2, 1) =
+/// zeta(-1/2)): Euler-Maclaurin summation with 8 terms and 3 Bernoulli corrections (error
+/// below 1e-10).
+fn hurwitz_zeta_m05(q: f64) -> f64 {
+    let q = if q <= 0.0 { 1.0 } else { q };
+    let s = -0.5_f64;
+    let n = 8usize;
+    let mut r: f64 = (0..n).map(|k| (k as f64 + q).sqrt()).sum();
+    let x = n as f64 + q;
+    r += x.powf(1.5) / (s - 1.0) + 0.5 * x.sqrt();
+    // B_2j / (2j)! times the rising product s (s + 1) ... (s + 2j - 2)
+    let b = [1.0 / 6.0, -1.0 / 30.0, 1.0 / 42.0];
+    let fact = [2.0, 24.0, 720.0];
+    let mut poch = s;
+    for jj in 0..3 {
+        if jj > 0 {
+            let jf = jj as f64;
+            poch *= (s + 2.0 * jf - 1.0) * (s + 2.0 * jf);
+        }
+        r += b[jj] / fact[jj] * poch * x.powf(-s - 2.0 * jj as f64 - 1.0);
+    }
+    r
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{strip_rule, TRAILING_NODE};
+    use super::{hurwitz_zeta_m05, strip_rule, TRAILING_NODE};
+
+    #[test]
+    fn hurwitz_zeta_at_minus_one_half() {
+        // zeta(-1/2) = -zeta(3/2) / (4 pi) = -0.207886224977...
+        assert!((hurwitz_zeta_m05(1.0) + 0.207_886_224_977_354_6).abs() < 1e-10);
+        assert_eq!(hurwitz_zeta_m05(0.0), hurwitz_zeta_m05(1.0));
+        // zeta(s, q) = q^-s + zeta(s, q + 1): zeta(-1/2, 1/2) = sqrt(1/2) + zeta(-1/2, 3/2)
+        // and zeta(-1/2, 1/2) = (2^(-1/2) - 1) zeta(-1/2)
+        let half = (0.5_f64.sqrt() - 1.0) * hurwitz_zeta_m05(1.0);
+        assert!((hurwitz_zeta_m05(0.5) - half).abs() < 1e-10);
+    }
 
     #[test]
     fn strips_are_gauss_legendre() {

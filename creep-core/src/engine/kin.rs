@@ -4,6 +4,7 @@ use super::{Contact, V_STANDSTILL};
 use crate::thermal;
 
 /// Per-sub-step kinematic context of one strip.
+#[derive(Clone, Copy)]
 pub(super) struct Kin {
     pub(super) h: f64,
     pub(super) dist: f64,

@@ -67,6 +67,16 @@ pub enum Scheme {
     Continuous,
     /// Reference: one sub-step per cell crossing for every bristle, no march (slowest).
     Cells,
+    /// [`Scheme::CellsMarch`] with the higher-order rules along each move (ECF's
+    /// same-characteristic law; docs/model.md section 9, step 8): tau_c2 linear and 1/L_p
+    /// along the move's temperature profile from the start material's to the end
+    /// material's, the newest interval of Eq. 4.35 with the heat rate linear over the move,
+    /// the move from the leading edge in [`advance::EDGE_SUB`] graded sub-moves, and the
+    /// leading cell's sqrt(s) term in the quadrature. About twice the cost of
+    /// [`Scheme::CellsMarch`] on the same grid, and more accurate on a grid of equal cost.
+    /// FASTSIM (and any other perfectly plastic or elastic-unloading layer) takes
+    /// [`Scheme::CellsMarch`].
+    CellsHigher,
 }
 
 /// Normal forces at or below this (N) are lift-off: the contact carries nothing. (The
@@ -219,6 +229,9 @@ pub struct Contact {
     pool: Option<std::sync::Arc<rayon::ThreadPool>>,
     /// How a step advances the bristles (see [`Scheme`]).
     scheme: Scheme,
+    /// The higher-order rules apply ([`Scheme::CellsHigher`] on an ECF layer under the
+    /// same-characteristic rule).
+    ho: bool,
     /// Rolling backwards (the last non-zero speed was negative): the grid and `inputs`,
     /// `out` are held in the mirrored frame x -> -x, where the contact rolls forwards.
     reversed: bool,
@@ -287,6 +300,7 @@ impl Contact {
             initialized: false,
             warnings: Vec::new(),
             scheme: Scheme::CellsMarch,
+            ho: false,
             reversed: false,
             np_cache: vec![Vec::new(); ny],
             np_cache_p0: vec![f64::NAN; ny],
@@ -692,7 +706,9 @@ impl Contact {
     #[doc(hidden)]
     pub fn fast_path(&self, path: FastPath) -> bool {
         match path {
-            FastPath::Softening => self.softening_fast,
+            // the higher-order rules take the general move
+            FastPath::Softening => self.softening_fast && !self.ho,
+            FastPath::Coulomb => self.fast.get(path) && !self.ho,
             _ => self.fast.get(path),
         }
     }
@@ -700,6 +716,9 @@ impl Contact {
     /// Chooses how a step advances the bristles (default [`Scheme::CellsMarch`]).
     pub fn set_scheme(&mut self, scheme: Scheme) {
         self.scheme = scheme;
+        self.ho = scheme == Scheme::CellsHigher
+            && self.cfg.model == ModelKind::Ecf
+            && self.r.rule == crate::bristle::Rule::SameCharacteristic;
     }
 
     /// How a step advances the bristles.

@@ -145,7 +145,7 @@ impl Contact {
         let j = sp.j;
         let v = self.inputs.v;
         let a = self.patch.a;
-        let march = self.scheme == Scheme::CellsMarch;
+        let march = matches!(self.scheme, Scheme::CellsMarch | Scheme::CellsHigher);
         let dx = 2.0 * self.ell[j] * a / self.nx as f64;
         let mut remaining = v * dt;
         let tol = 1e-9 * dx;
