@@ -20,13 +20,15 @@
 //! Schemes: `cells` is [`Scheme::CellsMarch`], the default of `ecf --scheme cells` and of the
 //! FMU (`scheme = 0`), so that the costs are those a user gets; the reference
 //! [`Scheme::Cells`] gives the same errors to 0.001 % at a higher cost (checked on the
-//! `--quick` cases). `continuous` is [`Scheme::Continuous`].
+//! `--quick` cases). `continuous` is [`Scheme::Continuous`], `cells-ho` is
+//! [`Scheme::CellsHigher`] (the higher-order rules along each move).
 //!
 //! The full run (not `--quick`) also writes the table as CSV to
 //! `creep-core/data/accuracy.csv` ([`CSV_PATH`]), which `creep_core::tolerance` reads at
 //! compile time: regenerate it with `bash scripts/bench.sh --only accuracy`, never by hand.
 //! `ECF_ACCURACY_CSV=path` writes it elsewhere instead (with `--quick` too).
 use creep_core::engine::Scheme;
+use creep_core::tolerance::scheme_name;
 use creep_core::{Config, Contact, Grid, Inputs};
 use std::time::Instant;
 
@@ -291,7 +293,7 @@ pub fn table(quick: bool, finest: usize) {
             "x real t"
         );
         for (gi, &(nx, ny)) in grids.iter().enumerate() {
-            for scheme in [Scheme::CellsMarch, Scheme::Continuous] {
+            for scheme in [Scheme::CellsMarch, Scheme::Continuous, Scheme::CellsHigher] {
                 let r;
                 let resp = match scheme {
                     Scheme::CellsMarch => &cells[gi],
@@ -306,11 +308,7 @@ pub fn table(quick: bool, finest: usize) {
                 println!(
                     "   {:>8} {:>10} {:>26} {:>26} {:>26} {:>10.2}",
                     format!("{nx}x{ny}"),
-                    if matches!(scheme, Scheme::CellsMarch) {
-                        "cells"
-                    } else {
-                        "continuous"
-                    },
+                    scheme_name(scheme),
                     f(e[0]),
                     f(e[1]),
                     f(e[2]),
@@ -360,11 +358,7 @@ fn csv_row(
         case.kind_name(),
         case.v,
         case.dt * 1e3,
-        if matches!(scheme, Scheme::CellsMarch) {
-            "cells"
-        } else {
-            "continuous"
-        }
+        scheme_name(scheme)
     );
     for t in e {
         s.push_str(&format!(",{:.3},{:.3},{:.3}", t.0, t.1, t.2));

@@ -29,6 +29,7 @@ impl Contact {
     /// `np0`: the pressure parts at the start of the move under the higher-order rules
     /// ([`super::Scheme::CellsHigher`]), None otherwise.
     #[inline]
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn update_bristle(
         &self,
         k: &Kin,
