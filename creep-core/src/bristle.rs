@@ -184,14 +184,14 @@ impl Along {
 }
 
 /// 4-point Gauss-Legendre nodes on [0, 1] (the L_p mean along a temperature profile).
-const GL4_X: [f64; 4] = [
+pub(crate) const GL4_X: [f64; 4] = [
     0.069_431_844_202_973_7,
     0.330_009_478_207_571_9,
     0.669_990_521_792_428_1,
     0.930_568_155_797_026_3,
 ];
 /// Their weights.
-const GL4_W: [f64; 4] = [
+pub(crate) const GL4_W: [f64; 4] = [
     0.173_927_422_568_726_9,
     0.326_072_577_431_273_1,
     0.326_072_577_431_273_1,

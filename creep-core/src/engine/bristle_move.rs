@@ -9,7 +9,7 @@ use crate::thermal::{self, StepFactors, N_KERNEL};
 /// The end stress's extra weight in the newest interval of Eq. 4.35 under the higher-order
 /// rules: for a heat rate linear over the move the exact weights of its start and end rates
 /// are 1/3 and 2/3, i.e. the mean plus 1/6 of the rise.
-const QLIN: f64 = 1.0 / 6.0;
+pub(super) const QLIN: f64 = 1.0 / 6.0;
 
 /// The state between two trial states `a` and `b` of a temperature solve, at weight `w`;
 /// only within one regime (no kink between the ends).
@@ -45,8 +45,8 @@ impl Contact {
         let warm = acc[0] != 0.0;
         let t_hist = self.t_hist(k, acc, fac);
         // a layer that only softens as it heats: the scalar solve (module `softening`)
-        if self.softening_fast && k.heat && !self.ho {
-            if let Some(q) = self.update_softening(k, np, [x, y], du, t_hist, s, acc, fac) {
+        if self.softening_fast && k.heat {
+            if let Some(q) = self.update_softening(k, np, np0, [x, y], du, t_hist, s, acc, fac) {
                 return q;
             }
         }

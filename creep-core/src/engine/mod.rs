@@ -706,8 +706,8 @@ impl Contact {
     #[doc(hidden)]
     pub fn fast_path(&self, path: FastPath) -> bool {
         match path {
-            // the higher-order rules take the general move
-            FastPath::Softening => self.softening_fast && !self.ho,
+            FastPath::Softening => self.softening_fast,
+            // the higher-order rules split the leading cell, which FASTSIM's march does not
             FastPath::Coulomb => self.fast.get(path) && !self.ho,
             _ => self.fast.get(path),
         }

@@ -17,7 +17,7 @@
 use super::kin::Kin;
 use super::Contact;
 use crate::bristle::{BristleState, Material, Move, Regime, SofteningPath};
-use crate::material::{exp_fast, NodeP};
+use crate::material::{exp_fast, exp_pair, NodeP};
 use crate::thermal::{self, StepFactors, N_KERNEL};
 
 impl Contact {
@@ -32,6 +32,7 @@ impl Contact {
         &self,
         k: &Kin,
         np: &NodeP,
+        np0: Option<&NodeP>,
         [x, y]: [f64; 2],
         du: [f64; 2],
         t_hist: f64,
@@ -55,6 +56,31 @@ impl Contact {
         // flexibilities L + L_e and the elastic increment (Eq. 4.21); L_e does not depend on T
         let (lxe, lye, dtau) = k.flex(m_h.le, [x, y]);
         let path = mv.softening_path(&old, dtau, &m_h)?;
+        // The higher-order rules (docs/model.md section 9, step 8): the heat weighs the end
+        // stress by 1/2 + QLIN; a hardening bristle's law takes tau_c2 linear along the move
+        // from the start material's and the mean 1/L_p along the temperature profile
+        // ([`crate::bristle::lp_mean`]), with the start material at the bristle's start
+        // temperature (fixed for the solve). The sliding branch (t0 >= tau_c2 at t_hist,
+        // hence at every T above) and the elastic one keep their laws.
+        let ho = np0.is_some();
+        let start = match (np0, path) {
+            (Some(np0), SofteningPath::Hardening { t0, .. }) if t0 < m_h.tc2 => {
+                // an elastic bristle on a hardening path takes the cold crossing's law in the
+                // general move
+                if old.regime == Regime::Elastic {
+                    return None;
+                }
+                let m0 = self.material_static(np0, old.temp);
+                let q0 = (self.r.kq * (old.tau[0] * du[0] + old.tau[1] * du[1]) / k.h).max(0.0);
+                Some(MoveStart {
+                    tc2_0: m0.tc2,
+                    lp0: m0.lp,
+                    prof_a: self_c * (q0 - old.q),
+                    t_s: old.temp,
+                })
+            }
+            _ => None,
+        };
         let pm = PathMove {
             kq_h: self.r.kq / k.h,
             np,
@@ -66,9 +92,24 @@ impl Contact {
             theta,
             t_hist,
             self_c,
+            ho,
+            start,
+            t_h: std::cell::Cell::new(f64::NAN),
         };
         let (mut ns, q) = self.solve_on_path(&pm, path)?;
         ns.temp = t_hist + self_c * q;
+        // the higher-order rules: the temperature from the end-weighted heat, the
+        // accumulators (and the friction power) from the move's mean heat; where the general
+        // move would clamp the start or end rate, it runs
+        let q = if ho && q > 0.0 {
+            let (qbar, q1, q0) = pm.heat_parts(ns.tau, pm.release_of(&ns));
+            if q1 < 0.0 || q0 < 0.0 {
+                return None;
+            }
+            qbar
+        } else {
+            q
+        };
         ns.q = q;
         *s = ns;
         if warm || q > 0.0 {
@@ -131,8 +172,9 @@ impl Contact {
     /// regime and heat density there; None where the general solve must run. Returns (tau,
     /// regime, q, T).
     fn hardening_on_path(&self, pm: &PathMove, t0: f64, dn: f64, dir: [f64; 2]) -> Option<OnPath> {
-        let law = HardeningLaw::new(self, pm.m_h, t0, dn);
+        let law = HardeningLaw::new(self, pm.m_h, t0, dn, pm.start, pm.t_hist);
         let (t_h, dt_h) = law.at_hist();
+        pm.t_h.set(t_h);
         let coef = pm.heat_along(dir, t_h);
         let (root, sliding, t) = self.hardening_root(pm, &law, coef, (t_h, dt_h))?;
         // the span closes at one temperature and stays closed above it: open at the
@@ -166,6 +208,10 @@ impl Contact {
         (t_h, dt_h): (f64, f64),
     ) -> Option<(f64, bool, f64)> {
         let (t_hist, self_c, t0) = (pm.t_hist, pm.self_c, law.t0);
+        // the higher-order hardening law is not monotone in T in general (tau_c2 rising
+        // along the move can put t0 above its start value; the L_p mean along the profile
+        // moves either way): the general search for the smallest root, on the scalar law
+        let general = law.start.is_some() && t0 < law.m_h.tc2;
         let m_h = law.m_h;
         // the last temperature evaluated and the law there: (T, t, dt/dT, sliding, tau_c2)
         let last = std::cell::Cell::new((t_hist, t_h, dt_h, t0 >= m_h.tc2, m_h.tc2));
@@ -191,7 +237,7 @@ impl Contact {
         // L_p independent of T, if self_c dq/dT < 1/2 at t_hist: there
         // |dq/dT| = c2 t |a - 2 b t| (sliding) or c2 tau_c2 (1 - e) |a - 2 b t|
         // (hardening) is largest, both factors falling with T
-        if dq_h <= 0.0 || (law.cp == 0.0 && self_c * dq_h < 0.5) {
+        if !general && (dq_h <= 0.0 || (law.cp == 0.0 && self_c * dq_h < 0.5)) {
             let q_max = if dq_h <= 0.0 || b <= 0.0 {
                 q_h
             } else {
@@ -254,13 +300,81 @@ struct PathMove<'a> {
     /// the sub-step's own interval.
     t_hist: f64,
     self_c: f64,
+    /// The higher-order rules apply (the heat's end weight 1/2 + QLIN), and a hardening
+    /// bristle's start material under them.
+    ho: bool,
+    start: Option<MoveStart>,
+    /// The law's stress at t_hist (the release reference), set by the hardening path.
+    t_h: std::cell::Cell<f64>,
+}
+
+/// What a hardening bristle's law needs from the start of its move under the higher-order
+/// rules.
+#[derive(Clone, Copy)]
+struct MoveStart {
+    /// tau_c2 (Pa) and L_p (m) of the start material (start node, start temperature).
+    tc2_0: f64,
+    lp0: f64,
+    /// The temperature profile's sqrt(s) coefficient A, K ([`crate::bristle::Along`]).
+    prof_a: f64,
+    /// The bristle's temperature at the start of the move, degC.
+    t_s: f64,
 }
 
 impl PathMove<'_> {
+    /// The start stress's weight in the heat: 1/2 (the trapezoid), 1/2 - QLIN under the
+    /// higher-order rules.
+    #[inline]
+    fn w(&self) -> f64 {
+        if self.ho {
+            0.5 - super::bristle_move::QLIN
+        } else {
+            0.5
+        }
+    }
+
+    /// The release stress of the end state `ns` (its reference: the law's stress at t_hist
+    /// along the end stress's direction; the end stress itself off the hardening path).
+    fn release_of(&self, ns: &BristleState) -> [f64; 2] {
+        let t_h = self.t_h.get();
+        if t_h.is_nan() {
+            return ns.tau;
+        }
+        let t = (ns.tau[0] * ns.tau[0] + ns.tau[1] * ns.tau[1]).sqrt();
+        let d = if t > 0.0 {
+            [ns.tau[0] / t, ns.tau[1] / t]
+        } else {
+            [0.0, 0.0]
+        };
+        let r = [t_h * d[0], t_h * d[1]];
+        [
+            r[0] + self.theta * (ns.tau[0] - r[0]),
+            r[1] + self.theta * (ns.tau[1] - r[1]),
+        ]
+    }
+
+    /// (qbar, q1, q0) of the general move: the trapezoid's heat (at least 0) and the end and
+    /// start stresses' heat rates over the plastic slip.
+    fn heat_parts(&self, tau: [f64; 2], tau_r: [f64; 2]) -> (f64, f64, f64) {
+        let (du, l, old) = (self.mv.du(), self.l, self.old);
+        let dux = du[0] - l[0] * (tau_r[0] - old.tau[0]);
+        let duy = du[1] - l[1] * (tau_r[1] - old.tau[1]);
+        let tw = super::kin::trapezoid_stress(tau, old.tau);
+        let qbar = (self.kq_h * (tw[0] * dux + tw[1] * duy)).max(0.0);
+        let q1 = self.kq_h * (tau[0] * dux + tau[1] * duy);
+        let q0 = self.kq_h * (old.tau[0] * dux + old.tau[1] * duy);
+        (qbar, q1, q0)
+    }
+
     /// q of Eq. 4.29 as in the law's evaluation: tau_w . (du - L (tau_r - tau_old)) kq / h,
     /// tau_r the release stress, tau_w = (tau + tau_old) / 2 (the trapezoid).
     #[inline]
     fn heat(&self, tau: [f64; 2], tau_r: [f64; 2]) -> f64 {
+        if self.ho {
+            // as the general move: the end-weighted heat from the parts, each at least 0
+            let (qbar, q1, q0) = self.heat_parts(tau, tau_r);
+            return (qbar + super::bristle_move::QLIN * (q1.max(0.0) - q0.max(0.0))).max(0.0);
+        }
         let (du, l, old) = (self.mv.du(), self.l, self.old);
         let dux = du[0] - l[0] * (tau_r[0] - old.tau[0]);
         let duy = du[1] - l[1] * (tau_r[1] - old.tau[1]);
@@ -274,7 +388,7 @@ impl PathMove<'_> {
     /// the terms of the end stress and adds tau_old . slip / 2.
     fn heat_along(&self, dir: [f64; 2], t_h: f64) -> (f64, f64, f64) {
         let (kq_h, l, du, old, theta) = (self.kq_h, self.l, self.mv.du(), self.old, self.theta);
-        let w = 0.5;
+        let w = self.w();
         let bb = kq_h * (l[0] * dir[0] * dir[0] + l[1] * dir[1] * dir[1]);
         let a = kq_h
             * (dir[0] * (du[0] + l[0] * old.tau[0]) + dir[1] * (du[1] + l[1] * old.tau[1]))
@@ -302,13 +416,35 @@ struct HardeningLaw<'a> {
     cp: f64,
     /// exp(-dn / L_p) at t_hist.
     e_h: f64,
+    /// The start material under the higher-order rules, and t_hist (degC).
+    start: Option<MoveStart>,
+    t_hist: f64,
+    /// Under the higher-order rules: 1/L_p of the start material (1/m), and
+    /// ln(L_p(t_hist) / L_p0) (k of the profile mean at t_hist; k(T) = k_h + c_p (T -
+    /// t_hist)).
+    i0: f64,
+    k_h: f64,
 }
 
 impl<'a> HardeningLaw<'a> {
     /// The law of the contact's layer from the material at t_hist.
-    fn new(c: &Contact, m_h: &'a Material, t0: f64, dn: f64) -> Self {
+    fn new(
+        c: &Contact,
+        m_h: &'a Material,
+        t0: f64,
+        dn: f64,
+        start: Option<MoveStart>,
+        t_hist: f64,
+    ) -> Self {
         let (c2, cp) = (c.r.tc2_t, c.r.lp_t);
         let e_h = (-dn / m_h.lp).exp();
+        let (i0, k_h) = match &start {
+            Some(r) if r.lp0.is_finite() && r.lp0 > 0.0 => {
+                let i0 = 1.0 / r.lp0;
+                (i0, (i0 * m_h.lp).ln())
+            }
+            _ => (f64::NAN, f64::NAN),
+        };
         Self {
             m_h,
             t0,
@@ -316,7 +452,78 @@ impl<'a> HardeningLaw<'a> {
             c2,
             cp,
             e_h,
+            start,
+            t_hist,
+            i0,
+            k_h,
         }
+    }
+
+    /// [`crate::bristle::lp_mean`] over the whole move (from the start, not cold) on the
+    /// scalar path: k from k_h without a logarithm, the exponentials by pairs. `lp`: the end
+    /// material's L_p (m) at T = t_hist + `dtk`; `prof`: the temperature profile (A, B), K.
+    #[inline]
+    fn lp_mean(&self, r: &MoveStart, lp: f64, dtk: f64, prof: (f64, f64)) -> f64 {
+        if !self.i0.is_finite() {
+            return crate::bristle::lp_mean(r.lp0, lp, prof, 0.0, false);
+        }
+        let (i0, i1) = (self.i0, 1.0 / lp);
+        let k = self.k_h + self.cp * dtk;
+        let (ta, tb) = prof;
+        let dt = ta + tb;
+        if ta.is_finite() && tb.is_finite() && dt.abs() > 1e-9 && k.abs() > 1e-12 {
+            let (a, b) = (ta / dt, tb / dt);
+            let (x, w) = (crate::bristle::GL4_X, crate::bristle::GL4_W);
+            let arg = |u: f64| -k * (a * u + b * u * u);
+            let (e0, e1) = exp_pair(arg(x[0]), arg(x[1]));
+            let (e2, e3) = exp_pair(arg(x[2]), arg(x[3]));
+            let mean =
+                2.0 * (w[0] * x[0] * e0 + w[1] * x[1] * e1 + w[2] * x[2] * e2 + w[3] * x[3] * e3);
+            return 1.0 / (i0 * mean);
+        }
+        if k.abs() < 1e-9 {
+            2.0 / (i0 + i1)
+        } else {
+            k / (i0 - i1)
+        }
+    }
+
+    /// The hardening stress under the higher-order rules at tau_c2 = `tc2` (Pa), end L_p =
+    /// `lp` (m), T = t_hist + `dtk`: the general move's law ([`crate::bristle::harden_lin`]
+    /// with [`crate::bristle::lp_mean`]).
+    #[inline]
+    fn stress_ho(&self, r: &MoveStart, tc2: f64, lp: f64, dtk: f64) -> f64 {
+        let dt = self.t_hist + dtk - r.t_s;
+        let ta = if dt >= 0.0 {
+            r.prof_a.clamp(0.0, dt)
+        } else {
+            r.prof_a.clamp(dt, 0.0)
+        };
+        let lpe = self.lp_mean(r, lp, dtk, (ta, dt - ta));
+        let dlt = tc2 - r.tc2_0;
+        let dlt = if dlt.is_finite() { dlt } else { 0.0 };
+        let x = self.dn / lpe;
+        let e = exp_fast(-x);
+        if dlt == 0.0 && lpe == lp {
+            return tc2 - (tc2 - self.t0) * e;
+        }
+        let base = tc2 - (tc2 - self.t0) * e;
+        if x.is_nan() || x <= 0.0 {
+            return base;
+        }
+        // phi = (1 - e)/x - e; below x = 0.1 by its series sum_n (-1)^(n+1) n x^n / (n+1)!
+        // to n = 8 (truncation below 3e-15 of phi), where 1 - e cancels
+        let phi = if x < 0.1 {
+            x * (1.0 / 2.0
+                - x * (1.0 / 3.0
+                    - x * (1.0 / 8.0
+                        - x * (1.0 / 30.0
+                            - x * (1.0 / 144.0
+                                - x * (1.0 / 840.0 - x * (1.0 / 5760.0 - x * (1.0 / 45360.0))))))))
+        } else {
+            (1.0 - e) / x - e
+        };
+        (base - dlt * phi).min(tc2)
     }
 
     /// (t, dt/dT, sliding, tau_c2) at T = t_hist + `dtk`.
@@ -339,6 +546,10 @@ impl<'a> HardeningLaw<'a> {
                 };
             (lp, exp_fast(-dn / lp))
         };
+        if let Some(r) = &self.start {
+            // no derivative: this law takes the general search
+            return (self.stress_ho(r, tc2, lp, dtk), f64::NAN, false, tc2);
+        }
         // d/dT of tc2 - (tc2 - t0) e, e = exp(-dn / L_p)
         let de = e * dn * cp / lp;
         (
@@ -354,6 +565,8 @@ impl<'a> HardeningLaw<'a> {
         let (m_h, t0, dn, c2, cp, e_h) = (self.m_h, self.t0, self.dn, self.c2, self.cp, self.e_h);
         if t0 >= m_h.tc2 {
             (m_h.tc2, -c2 * m_h.tc2)
+        } else if let Some(r) = &self.start {
+            (self.stress_ho(r, m_h.tc2, m_h.lp, 0.0), f64::NAN)
         } else {
             let de = e_h * dn * cp / m_h.lp;
             (
