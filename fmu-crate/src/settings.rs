@@ -15,6 +15,12 @@ pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
 /// [`MAX_CONFIG_BYTES`]; anything else (FIFO, device, directory, socket) is refused without
 /// reading from it, so it can neither block nor exhaust memory.
 pub fn read_config(path: &Path) -> Result<Config, String> {
+    let text = read_config_text(path)?;
+    Config::from_json_str(&text, &path.display().to_string()).map_err(|e| e.to_string())
+}
+
+/// The text of a configuration file, with the checks of [`read_config`].
+fn read_config_text(path: &Path) -> Result<String, String> {
     use std::io::Read;
     let shown = path.display();
     let meta = std::fs::metadata(path).map_err(|e| format!("cannot read '{shown}': {e}"))?;
@@ -40,7 +46,7 @@ pub fn read_config(path: &Path) -> Result<Config, String> {
             "'{shown}' grew beyond {MAX_CONFIG_BYTES} bytes while it was read"
         ));
     }
-    Config::from_json_str(&text, &shown.to_string()).map_err(|e| e.to_string())
+    Ok(text)
 }
 
 /// Path of a configuration file: absolute, or relative to the FMU's resources/ folder.
@@ -61,6 +67,24 @@ pub fn config_path(resources: Option<&Path>, file: &str) -> Result<PathBuf, Stri
 /// [`MAX_CONFIG_BYTES`] (a FIFO, a device or a directory is refused before opening it).
 pub fn read_config_file(resources: Option<&Path>, file: &str) -> Result<Config, String> {
     read_config(&config_path(resources, file)?)
+}
+
+/// [`read_config_file`], and whether the file gives a `grid` (a top-level key `grid`,
+/// whatever its value), from the one read.
+fn read_config_file_and_grid(
+    resources: Option<&Path>,
+    file: &str,
+) -> Result<(Config, bool), String> {
+    let path = config_path(resources, file)?;
+    let text = read_config_text(&path)?;
+    let cfg =
+        Config::from_json_str(&text, &path.display().to_string()).map_err(|e| e.to_string())?;
+    Ok((cfg, names_grid(&text)))
+}
+
+/// True if a configuration document has a top-level key `grid` (whatever its value).
+fn names_grid(text: &str) -> bool {
+    serde_json::from_str::<serde_json::Value>(text).is_ok_and(|v| v.get("grid").is_some())
 }
 
 /// Where a data column's value comes from.
@@ -217,27 +241,28 @@ impl Settings {
     /// the grid is given, by both `nx` and `ny` or by the configuration file's `grid` (an
     /// explicit grid is the user's: the default tolerance does not apply, so neither the
     /// grid nor the scheme changes; a value set by the user does, among the table's rows
-    /// with that grid). `resources`: where a relative configuration file is.
-    pub fn rel_tol(&self, resources: Option<&Path>) -> f64 {
+    /// with that grid). `file_grid`: whether the configuration file gives a `grid`, as
+    /// [`Self::resolve`] (which reads the file) or [`Self::file_names_grid`] tell.
+    pub fn rel_tol(&self, file_grid: bool) -> f64 {
         match self.rel_tol {
             Some(x) => x,
             None if self.nx.is_some() && self.ny.is_some() => 0.0,
-            None if self.file_names_grid(resources) => 0.0,
+            None if file_grid => 0.0,
             None => DEFAULT_REL_TOL,
         }
     }
 
     /// True if the configuration file, if any, has a `grid` (an unreadable file: false; its
-    /// error is reported where the configuration is resolved).
-    fn file_names_grid(&self, resources: Option<&Path>) -> bool {
+    /// error is reported where the configuration is resolved). Reads the file: for when
+    /// [`Self::resolve`] has not (`resources`: where a relative configuration file is).
+    pub fn file_names_grid(&self, resources: Option<&Path>) -> bool {
         if self.config_file.is_empty() {
             return false;
         }
         config_path(resources, &self.config_file)
             .ok()
-            .and_then(|p| std::fs::read_to_string(p).ok())
-            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-            .is_some_and(|v| v.get("grid").is_some())
+            .and_then(|p| read_config_text(&p).ok())
+            .is_some_and(|t| names_grid(&t))
     }
 
     /// The value `rel_tol` reads back: as set, else its start value.
@@ -450,7 +475,9 @@ impl Settings {
         }
     }
 
-    fn base_config(&self, resources: Option<&Path>) -> Result<Config, String> {
+    /// The preset's or configuration file's configuration, and whether the file gives a
+    /// `grid` (false without a file).
+    fn base_config(&self, resources: Option<&Path>) -> Result<(Config, bool), String> {
         let s = self;
         let check_model = |c: &Config, what: &str| -> Result<(), String> {
             if s.model_set && c.model.name() != s.model {
@@ -481,32 +508,35 @@ impl Settings {
                     s.preset, s.config_file
                 ));
             }
-            let c = read_config_file(resources, &s.config_file)
+            let (c, grid) = read_config_file_and_grid(resources, &s.config_file)
                 .map_err(|e| format!("config_file: {e}"))?;
             check_model(&c, &format!("config_file '{}'", s.config_file))?;
-            Ok(c)
+            Ok((c, grid))
         } else if !s.preset.is_empty() {
             let c = Config::preset(&s.preset).map_err(|e| format!("preset: {e}"))?;
             check_model(&c, &format!("preset '{}'", s.preset))?;
-            Ok(c)
+            Ok((c, false))
         } else if s.model_set {
-            Config::for_model(&s.model).map_err(|e| format!("model: {e}"))
+            let c = Config::for_model(&s.model).map_err(|e| format!("model: {e}"))?;
+            Ok((c, false))
         } else {
-            Config::for_model("ecf").map_err(|e| format!("model: {e}"))
+            let c = Config::for_model("ecf").map_err(|e| format!("model: {e}"))?;
+            Ok((c, false))
         }
     }
 
     /// The grid and scheme that `rel_tol` chooses at speed `v` (m/s), None when rel_tol = 0
     /// or the model is not ECF (the table is measured for it). Explicit nx, ny and scheme = 1
     /// restrict the choice to the table's rows with them; when the table has none, Err for
-    /// a value set by the user, None for the start value.
+    /// a value set by the user, None for the start value. `file_grid` as for
+    /// [`Self::rel_tol`].
     pub fn tolerance_choice(
         &self,
         cfg: &Config,
         v: f64,
-        resources: Option<&Path>,
+        file_grid: bool,
     ) -> Option<Result<creep_core::tolerance::Choice, String>> {
-        let rel_tol = self.rel_tol(resources);
+        let rel_tol = self.rel_tol(file_grid);
         if rel_tol <= 0.0 || cfg.model != ModelKind::Ecf {
             return None;
         }
@@ -529,10 +559,11 @@ impl Settings {
 
     /// Resolves the configuration: preset or file (relative paths against `resources`),
     /// then every parameter the importer set; with rel_tol > 0, the grid it chooses at the
-    /// speed `v` (m/s, the input's current value).
-    pub fn resolve(&self, resources: Option<&Path>, v: f64) -> Result<Config, String> {
+    /// speed `v` (m/s, the input's current value). Also returns whether the configuration
+    /// file gives a `grid` (for [`Self::rel_tol`]; false without a file), from the same read.
+    pub fn resolve(&self, resources: Option<&Path>, v: f64) -> Result<(Config, bool), String> {
         let s = self;
-        let mut cfg = self.base_config(resources)?;
+        let (mut cfg, file_grid) = self.base_config(resources)?;
         for (p, x) in &s.params {
             cfg.params.set(*p, *x).map_err(|e| e.to_string())?;
         }
@@ -575,9 +606,9 @@ impl Settings {
         if cfg.model == ModelKind::Fastsim && !cfg.effects.has(Effect::Coulomb) {
             return Err("model fastsim needs effect_coulomb = true".into());
         }
-        if let Some(Ok(c)) = self.tolerance_choice(&cfg, v, resources) {
+        if let Some(Ok(c)) = self.tolerance_choice(&cfg, v, file_grid) {
             cfg.grid = Grid { nx: c.nx, ny: c.ny };
         }
-        Ok(cfg)
+        Ok((cfg, file_grid))
     }
 }

@@ -178,12 +178,13 @@ impl Contact {
                 // end positions are one node further (phase 1), then the slots shift. A cell
                 // begun in an earlier step is moved whole from the bristles' node states with
                 // the distance-weighted inputs of its parts (whole-cell commit: no cell is cut)
-                let (skip, end) = if !march {
-                    (0, self.nx + 1)
-                } else {
-                    (n_new, self.nx + 1 - (wraps - n_new))
-                };
                 if !march || n_new + (wraps - n_new) <= self.nx {
+                    // (within this guard: with more entries than cells, end would underflow)
+                    let (skip, end) = if !march {
+                        (0, self.nx + 1)
+                    } else {
+                        (n_new, self.nx + 1 - (wraps - n_new))
+                    };
                     let kin = if *sp.phase > 0.0 {
                         sp.back_to_nodes(skip..self.nx.min(end));
                         self.part_kin(sp.part, to_next)

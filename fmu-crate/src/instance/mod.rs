@@ -220,6 +220,10 @@ pub struct Instance {
     phase: Phase,
     time: f64,
     cfg: Option<Config>,
+    /// Whether the configuration file gives a `grid` (for rel_tol), as the last read of the
+    /// file found; None when it was not read since the settings last changed or a state
+    /// was restored.
+    file_grid: Option<bool>,
     model: Option<Model>,
     /// True if `model` holds the outputs of the current inputs and settings (Init mode).
     model_current: bool,
@@ -247,6 +251,7 @@ impl Instance {
             phase: Phase::Instantiated,
             time: 0.0,
             cfg: None,
+            file_grid: None,
             model: None,
             model_current: false,
             init_failed: false,
@@ -274,6 +279,7 @@ impl Instance {
         self.phase = Phase::Instantiated;
         self.time = 0.0;
         self.cfg = None;
+        self.file_grid = None;
         self.model = None;
         self.model_current = false;
         self.init_failed = false;
@@ -453,16 +459,17 @@ impl Instance {
     /// for the explicit settings, or when the model is not ECF.
     fn log_tolerance_choice(&mut self) -> Status {
         const F: &str = "fmi2ExitInitializationMode";
-        let tol = self.settings.rel_tol(self.resources.as_deref());
+        let tol = self.rel_tol();
         if tol <= 0.0 {
             return Status::Ok;
         }
         let Some(cfg) = self.model.as_ref().map(|m| m.config().clone()) else {
             return Status::Ok;
         };
+        let file_grid = self.file_grid();
         match self
             .settings
-            .tolerance_choice(&cfg, self.speed(), self.resources.as_deref())
+            .tolerance_choice(&cfg, self.speed(), file_grid)
         {
             // the start value is no request: FASTSIM and Polach ignore it silently
             None if self.settings.rel_tol.is_none() => Status::Ok,
@@ -663,6 +670,7 @@ impl Instance {
         self.inputs = s.inputs;
         self.time = s.time;
         self.cfg = s.cfg.clone();
+        self.file_grid = None;
         self.model = model;
         self.model_current = self.model.is_some();
         // the mode the state was taken in, whatever this instance's mode
@@ -677,15 +685,20 @@ impl Instance {
     }
 }
 
-/// The configuration resolved from `settings`, computed once into `cache`.
+/// The configuration resolved from `settings`, computed once into `cache`; resolving it
+/// (the one read of the configuration file) also records in `file_grid` whether the file
+/// gives a `grid`.
 fn cached_config<'a>(
     cache: &'a mut Option<Config>,
+    file_grid: &mut Option<bool>,
     settings: &Settings,
     resources: Option<&Path>,
     v: f64,
 ) -> Result<&'a Config, String> {
     if cache.is_none() {
-        *cache = Some(settings.resolve(resources, v)?);
+        let (cfg, grid) = settings.resolve(resources, v)?;
+        *cache = Some(cfg);
+        *file_grid = Some(grid);
     }
     cache.as_ref().ok_or_else(|| "no configuration".to_string())
 }

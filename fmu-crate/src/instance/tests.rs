@@ -394,3 +394,64 @@ fn the_default_rel_tol_runs_in_real_time_at_20_m_s_and_an_explicit_grid_turns_it
     let (mut i, _, _) = with_tol(DEFAULT_REL_TOL, 20.0, &[("nx", 40)]);
     assert_eq!(i.get_integer(vr("ny")), Ok(c.ny as i32));
 }
+
+/// The start value of rel_tol is off when the configuration file gives a `grid` (even after a
+/// state restore, where the configuration was not resolved from the file) and chooses the
+/// table's grid when it does not.
+#[test]
+fn a_configuration_file_with_a_grid_turns_the_default_rel_tol_off() {
+    let dir = std::env::temp_dir().join(format!("ecf-file-grid-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let with = dir.join("with.json");
+    let without = dir.join("without.json");
+    std::fs::write(
+        &with,
+        r#"{"preset": "table4.1", "grid": {"nx": 30, "ny": 7}}"#,
+    )
+    .expect("w");
+    std::fs::write(&without, r#"{"preset": "table4.1"}"#).expect("w");
+    let c = creep_core::tolerance::choose(DEFAULT_REL_TOL, 20.0, None, table41()).expect("c");
+    assert_ne!(
+        (c.nx, c.ny),
+        (30, 7),
+        "the test needs the table's grid to differ"
+    );
+    let init = |file: &std::path::Path| {
+        let mut i = Instance::new("t", None, true);
+        assert_eq!(
+            i.set_string(vr("config_file"), file.to_str().unwrap()),
+            Status::Ok
+        );
+        assert_eq!(i.set_real(vr("v"), 20.0), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok, "{:?}", i.take_logs());
+        let grid = (i.get_integer(vr("nx")), i.get_integer(vr("ny")));
+        let chose = i.take_logs().iter().any(|l| l.text.contains("rel_tol"));
+        (i, grid, chose)
+    };
+    let (mut i, grid, chose) = init(&with);
+    assert_eq!((grid, chose), ((Ok(30), Ok(7)), false));
+    let (_, grid, chose) = init(&without);
+    assert_eq!((grid, chose), ((Ok(c.nx as i32), Ok(c.ny as i32)), true));
+    // a state taken in initialization mode, restored: its configuration comes with it, not
+    // from the file, and the default rel_tol stays off (no choice, no log of one)
+    let mut j = Instance::new("t", None, true);
+    assert_eq!(
+        j.set_string(vr("config_file"), with.to_str().unwrap()),
+        Status::Ok
+    );
+    assert_eq!(j.set_real(vr("v"), 20.0), Status::Ok);
+    assert_eq!(j.enter_initialization(), Status::Ok);
+    assert_eq!(j.get_integer(vr("nx")), Ok(30));
+    let s = j.get_state();
+    assert_eq!(i.set_state(&s), Status::Ok);
+    let _ = i.take_logs();
+    assert_eq!(i.exit_initialization(), Status::Ok, "{:?}", i.take_logs());
+    let logs = i.take_logs();
+    assert!(logs.iter().all(|l| !l.text.contains("rel_tol")), "{logs:?}");
+    assert_eq!(
+        (i.get_integer(vr("nx")), i.get_integer(vr("ny"))),
+        (Ok(30), Ok(7))
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -47,6 +47,7 @@ impl Instance {
 
     fn settings_changed(&mut self) {
         self.cfg = None;
+        self.file_grid = None;
         self.model_current = false;
         if self.phase != Phase::StepComplete {
             self.model = None;
@@ -55,7 +56,33 @@ impl Instance {
 
     fn config(&mut self) -> Result<&Config, String> {
         let v = self.inputs[In::Core(InputId::V).index()];
-        cached_config(&mut self.cfg, &self.settings, self.resources.as_deref(), v)
+        cached_config(
+            &mut self.cfg,
+            &mut self.file_grid,
+            &self.settings,
+            self.resources.as_deref(),
+            v,
+        )
+    }
+
+    /// Whether the configuration file gives a `grid`: as the configuration's resolution
+    /// read it, else (not resolved since the settings changed, e.g. after a state was
+    /// restored) from a read of the file here.
+    pub(super) fn file_grid(&mut self) -> bool {
+        match self.file_grid {
+            Some(g) => g,
+            None => {
+                let g = self.settings.file_names_grid(self.resources.as_deref());
+                self.file_grid = Some(g);
+                g
+            }
+        }
+    }
+
+    /// The tolerance in force ([`Settings::rel_tol`]).
+    pub(super) fn rel_tol(&mut self) -> f64 {
+        let g = self.file_grid();
+        self.settings.rel_tol(g)
     }
 
     /// The speed input v, m/s (its current value; at initialization, its start value).
@@ -107,14 +134,14 @@ impl Instance {
         if rebuild {
             self.model = Some(Model::new(&cfg).map_err(|e| e.to_string())?);
         }
-        self.tol_scheme =
-            match self
-                .settings
-                .tolerance_choice(&cfg, self.speed(), self.resources.as_deref())
-            {
-                Some(Ok(c)) => Some(c.scheme),
-                _ => None,
-            };
+        let file_grid = self.file_grid();
+        self.tol_scheme = match self
+            .settings
+            .tolerance_choice(&cfg, self.speed(), file_grid)
+        {
+            Some(Ok(c)) => Some(c.scheme),
+            _ => None,
+        };
         self.apply_how_to_compute()?;
         let inputs = core_inputs(&self.inputs);
         let extra = self.extras(&cfg)?;
@@ -153,11 +180,12 @@ impl Instance {
         let Instance {
             settings,
             cfg,
+            file_grid,
             resources,
             ..
         } = self;
         match settings.get(v, || {
-            cached_config(cfg, settings, resources.as_deref(), speed)
+            cached_config(cfg, file_grid, settings, resources.as_deref(), speed)
         }) {
             Some(Ok(x)) => Ok(x),
             Some(Err(e)) => {
@@ -317,9 +345,11 @@ impl Instance {
                 let x = *x;
                 self.inputs[i.index()] = x;
                 self.model_current = false;
+                // (a configuration not resolved yet has nothing to forget: no file read then)
                 if i == In::Core(InputId::V)
-                    && self.settings.rel_tol(self.resources.as_deref()) > 0.0
+                    && self.cfg.is_some()
                     && matches!(self.phase, Phase::Instantiated | Phase::Initialization)
+                    && self.rel_tol() > 0.0
                 {
                     // rel_tol chooses the grid at the speed the initialization ends with
                     self.cfg = None;
