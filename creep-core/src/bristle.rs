@@ -160,8 +160,9 @@ pub struct Move {
 /// How tau_c2 and L_p vary along a move under the higher-order rules
 /// ([`crate::engine::Scheme::CellsHigher`], docs/model.md section 9, step 8): tau_c2 linear
 /// from the start material's to the end material's, 1/L_p from the start's to the end's
-/// along the move's temperature profile (or exponentially in s without one). NaN fields:
-/// the end material over the whole move (Eq. 4.7 as the seed writes it per cell).
+/// with its pressure part exponential in s and its temperature part along the move's
+/// temperature profile. NaN fields: the end material over the whole move (Eq. 4.7 as the
+/// seed writes it per cell).
 #[derive(Clone, Copy, Debug)]
 pub struct Along {
     /// tau_c2 of the start material (the start position at the bristle's temperature at the
@@ -169,9 +170,11 @@ pub struct Along {
     pub tc2_start: f64,
     /// L_p of the start material, m.
     pub lp_start: f64,
-    /// The temperature along the move, T(s) - T_start = A sqrt(s/h) + B s/h, (A, B) in K:
-    /// A the self-heating of the jump of the heat rate at the start of the move, B the rest.
-    pub t_prof: (f64, f64),
+    /// The temperature profile's sqrt(s) part in L_p (-): X_T,Lp A, with the temperature
+    /// along the move T(s) - T_start = A sqrt(s/h) + B s/h (A the self-heating of the jump of
+    /// the heat rate at the start of the move, K; B the rest) and L_p ~ exp(X_T,Lp T)
+    /// (Eq. 4.4); 0 or NaN: none.
+    pub lp_sqrt: f64,
 }
 
 impl Along {
@@ -179,7 +182,7 @@ impl Along {
     pub const END: Along = Along {
         tc2_start: f64::NAN,
         lp_start: f64::NAN,
-        t_prof: (f64::NAN, f64::NAN),
+        lp_sqrt: f64::NAN,
     };
 }
 
@@ -200,29 +203,28 @@ pub(crate) const GL4_W: [f64; 4] = [
 
 /// The effective L_p (m) of the part of a move from fraction `lam` to 1 under the
 /// higher-order rules: 1/L_p varies from the start material's (`lp0`) to the end's (`lp1`)
-/// as exp(-k g(s)), k = ln(L_p1 / L_p0), g the shape of the temperature profile `t_prof`
-/// ([`Along::t_prof`]; 4-point Gauss-Legendre in u = sqrt(s/h)) or, without one, g = s/h
-/// (the logarithmic mean: exact for T linear in s and L_p exponential in T, Eq. 4.4).
-/// `cold`: the part starts at a cold crossing, whose L_p is the start one (the bristle
-/// makes no heat before it yields). `lp0` not finite and positive: `lp1`.
+/// as i0 exp(-(c u + (k - c) u^2)), u = sqrt(s/h), k = ln(L_p1 / L_p0), c = `lp_sqrt`
+/// ([`Along::lp_sqrt`]): ln L_p's pressure part and the temperature profile's s part
+/// linear in s, its sqrt(s) part c u (4-point Gauss-Legendre in u); with c = 0 the
+/// logarithmic mean (exact for 1/L_p exponential in s). Continuous in lp1 (the trial
+/// temperature). `cold`: the part starts at a cold crossing, whose L_p is the start one (the
+/// bristle makes no heat before it yields). `lp0` not finite and positive: `lp1`.
 #[inline]
-pub fn lp_mean(lp0: f64, lp1: f64, t_prof: (f64, f64), lam: f64, cold: bool) -> f64 {
+pub fn lp_mean(lp0: f64, lp1: f64, lp_sqrt: f64, lam: f64, cold: bool) -> f64 {
     if !(lp0.is_finite() && lp0 > 0.0) {
         return lp1;
     }
     let (i0, i1) = (1.0 / lp0, 1.0 / lp1);
     let k = (i0 / i1).ln();
-    let (ta, tb) = t_prof;
-    let dt = ta + tb;
-    if !cold && ta.is_finite() && tb.is_finite() && dt.abs() > 1e-9 && k.abs() > 1e-12 {
-        // mean over the move of i0 exp(-k (a u + b u^2)), u = sqrt(s/h), ds = 2u du; from
-        // the crossing (lam) on: the same profile over the remainder
-        let (a, b) = (ta / dt, tb / dt);
+    let c = lp_sqrt;
+    if !cold && c.is_finite() && c != 0.0 {
+        // mean over the move of i0 exp(-(c u + (k - c) u^2)), ds = 2u du; from the crossing
+        // (lam) on: the same profile over the remainder
         let u0 = lam.sqrt();
         let mut sum = 0.0;
         for (x, w) in GL4_X.iter().zip(GL4_W.iter()) {
             let u = u0 + (1.0 - u0) * x;
-            sum += w * 2.0 * u * (-k * (a * u + b * u * u)).exp();
+            sum += w * 2.0 * u * (-(c * u + (k - c) * u * u)).exp();
         }
         let mean = sum * (1.0 - u0) / (1.0 - lam).max(1e-300);
         return 1.0 / (i0 * mean);
@@ -432,7 +434,7 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
     let dlt = m.tc2 - along.tc2_start;
     let dlt = if dlt.is_finite() { dlt } else { 0.0 };
     let lp_from =
-        |lam: f64, cold: bool| -> f64 { lp_mean(along.lp_start, m.lp, along.t_prof, lam, cold) };
+        |lam: f64, cold: bool| -> f64 { lp_mean(along.lp_start, m.lp, along.lp_sqrt, lam, cold) };
     if tc1c.is_finite() && !perfectly_plastic {
         // elastic at the start of the move, below the yield stress of its cold state
         // ([`Move::set_cold_yield`]): elastic up to tc1c, then Voce hardening on this

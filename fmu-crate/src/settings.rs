@@ -207,7 +207,8 @@ pub struct Settings {
     pub ny: Option<usize>,
     /// Threads that advance the strips (0 or 1: the calling thread).
     pub threads: usize,
-    /// How a step advances the bristles: 0 cell by cell, 1 continuous.
+    /// How a step advances the bristles: 0 cell by cell, 1 continuous, 2 cell by cell with
+    /// the higher-order rules ([`scheme_code`]).
     pub scheme: i32,
     /// Relative tolerance on F_x that chooses the grid and scheme at initialization
     /// (fraction; 0 = off), if set to a value other than its start value
@@ -228,6 +229,27 @@ fn geo_of(geometry: Geometry, g: Geo) -> Option<f64> {
         (Geometry::Curvatures { rx, .. }, Geo::Rx) => Some(rx),
         (Geometry::Curvatures { ry, .. }, Geo::Ry) => Some(ry),
         _ => None,
+    }
+}
+
+/// The code of the parameter `scheme` for an engine scheme: 0 cell by cell
+/// ([`Scheme::CellsMarch`]; the reference [`Scheme::Cells`] too), 1 continuous, 2 cell by
+/// cell with the higher-order rules.
+pub fn scheme_code(s: Scheme) -> i32 {
+    match s {
+        Scheme::CellsMarch | Scheme::Cells => 0,
+        Scheme::Continuous => 1,
+        Scheme::CellsHigher => 2,
+    }
+}
+
+/// The engine scheme of a code of the parameter `scheme` ([`scheme_code`]; any other code:
+/// cell by cell).
+pub fn scheme_of_code(c: i32) -> Scheme {
+    match c {
+        1 => Scheme::Continuous,
+        2 => Scheme::CellsHigher,
+        _ => Scheme::CellsMarch,
     }
 }
 
@@ -466,13 +488,9 @@ impl Settings {
         }))
     }
 
-    /// The engine's scheme of the parameter `scheme` (0 cells, 1 continuous).
+    /// The engine's scheme of the parameter `scheme` ([`scheme_code`]).
     pub fn scheme(&self) -> Scheme {
-        if self.scheme == 1 {
-            Scheme::Continuous
-        } else {
-            Scheme::CellsMarch
-        }
+        scheme_of_code(self.scheme)
     }
 
     /// The preset's or configuration file's configuration, and whether the file gives a
@@ -527,7 +545,7 @@ impl Settings {
 
     /// The grid and scheme that `rel_tol` chooses at speed `v` (m/s), None when rel_tol = 0
     /// or the model is not ECF (the table is measured for it). Explicit nx, ny and scheme = 1
-    /// restrict the choice to the table's rows with them; when the table has none, Err for
+    /// or 2 restrict the choice to the table's rows with them; when the table has none, Err for
     /// a value set by the user, None for the start value. `file_grid` as for
     /// [`Self::rel_tol`].
     pub fn tolerance_choice(
@@ -544,7 +562,7 @@ impl Settings {
             preset: creep_core::tolerance::scope_of(cfg),
             nx: self.nx,
             ny: self.ny,
-            scheme: (self.scheme == 1).then_some(Scheme::Continuous),
+            scheme: (self.scheme != 0).then(|| self.scheme()),
         };
         match creep_core::tolerance::choose(rel_tol, v, None, filter) {
             Ok(c) => Some(Ok(c)),

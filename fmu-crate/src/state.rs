@@ -1,6 +1,6 @@
 //! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
 //!
-//! Layout (version 5): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
+//! Layout (version 6): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
 //! name as in modelDescription.xml, f64 value), settings (model, model_set, preset,
 //! config_file, columns, set parameters as u32 count and (name, f64) each, set effects as
 //! u32 count and (name, u8) each, nx, ny as u32 (0 = not set), i32 geometry, u32 count + per geometry
@@ -10,7 +10,9 @@
 //! and, per formula then Rust effect, u32 count + f64 parameter values), u8 + u32 length +
 //! the bytes of `creep_core::Model::save_state` (the whole bristle grid and heat histories),
 //! and u8 the mode the state was taken in (0 Instantiated, 1 InitializationMode,
-//! 2 StepComplete, 3 Terminated), which fmi2SetFMUstate restores.
+//! 2 StepComplete, 3 Terminated), which fmi2SetFMUstate restores, and u8 the scheme
+//! `rel_tol` chose for the model (the code of the parameter `scheme`, 255: none chose one).
+//! Version 5 had no scheme byte (none chose one).
 //! Inputs, parameters, effects and geometry values are stored by name (those of creep-core's
 //! tables), so that a build with another input, parameter or effect reads the state: a value
 //! it lacks keeps its default (an effect: off in the configuration, not set in the settings);
@@ -34,7 +36,7 @@ use creep_core::{AnyModifier, Bound, Config, Geometry, Grid, Model, ModelKind, M
 /// Magic bytes at the start of a serialized FMU state.
 pub const MAGIC: &[u8; 8] = b"ECFFMUST";
 /// Format version written by this build.
-pub const VERSION: u32 = 5;
+pub const VERSION: u32 = 6;
 
 /// The inputs of format version 2, in its fixed order (version 3 stores each with its name).
 const V2_INPUTS: [&str; 10] = [
@@ -307,6 +309,9 @@ pub fn serialize(s: &Snapshot) -> Vec<u8> {
         None => w.u8(0),
     }
     w.u8(phase_code(s.phase));
+    w.u8(s
+        .tol_scheme
+        .map_or(255, |x| crate::settings::scheme_code(x) as u8));
     w.into_inner()
 }
 
@@ -463,6 +468,15 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     } else {
         Phase::Instantiated
     };
+    let tol_scheme = if v >= 6 {
+        match r.u8()? {
+            255 => None,
+            c @ 0..=2 => Some(crate::settings::scheme_of_code(c as i32)),
+            c => return Err(format!("bad scheme code {c}")),
+        }
+    } else {
+        None
+    };
     if r.position() != data.len() {
         return Err(format!("{} trailing bytes", data.len() - r.position()));
     }
@@ -473,6 +487,7 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
         cfg,
         model,
         phase,
+        tol_scheme,
     };
     validate_snapshot(&snap).map_err(|e| format!("invalid state: {e}"))?;
     Ok(snap)

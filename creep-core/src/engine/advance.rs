@@ -245,7 +245,7 @@ impl Contact {
                 mv.set_along(bristle::Along {
                     tc2_start: m0.tc2,
                     lp_start: m0.lp,
-                    t_prof: (f64::NAN, f64::NAN),
+                    lp_sqrt: f64::NAN,
                 });
                 bristle::update_move(s, &mv, dtau, &m, [lxe, lye]);
             }

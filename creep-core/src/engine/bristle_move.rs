@@ -100,11 +100,23 @@ impl Contact {
         // self-heating of the jump of the heat rate at the start of the move, from the old
         // stress over the rigid slip against the previous move's mean heat.
         let m0 = match (np0, &mv) {
-            (Some(np0), Some(_)) => Some(self.material(np0, old.temp, u_abs, slip)),
+            (Some(np0), Some(mv)) => {
+                let m0 = self.material(np0, old.temp, u_abs, slip);
+                let lp_sqrt = if self.r.temperature && k.heat {
+                    let q0 = (self.r.kq * (old.tau[0] * du[0] + old.tau[1] * du[1]) / k.h).max(0.0);
+                    self.r.lp_t * self_c * (q0 - old.q)
+                } else {
+                    f64::NAN
+                };
+                mv.set_along(bristle::Along {
+                    tc2_start: m0.tc2,
+                    lp_start: m0.lp,
+                    lp_sqrt,
+                });
+                Some(m0)
+            }
             _ => None,
         };
-        let profile = self.r.temperature && k.heat;
-        let q0_rigid = (self.r.kq * (old.tau[0] * du[0] + old.tau[1] * du[1]) / k.h).max(0.0);
         let eval = |t: f64| -> (BristleState, f64) {
             let m = match m_hist {
                 Some(m) if t == t_hist => m,
@@ -116,28 +128,7 @@ impl Contact {
             };
             let mut ns = old;
             match &mv {
-                Some(mv) => {
-                    if let Some(m0) = m0 {
-                        let t_prof = if profile {
-                            let dt = t - old.temp;
-                            let ta = self_c * (q0_rigid - old.q);
-                            let ta = if dt >= 0.0 {
-                                ta.clamp(0.0, dt)
-                            } else {
-                                ta.clamp(dt, 0.0)
-                            };
-                            (ta, dt - ta)
-                        } else {
-                            (f64::NAN, f64::NAN)
-                        };
-                        mv.set_along(bristle::Along {
-                            tc2_start: m0.tc2,
-                            lp_start: m0.lp,
-                            t_prof,
-                        });
-                    }
-                    bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye])
-                }
+                Some(mv) => bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye]),
                 None => bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule),
             }
             let q = if k.heat {

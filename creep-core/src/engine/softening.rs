@@ -75,8 +75,7 @@ impl Contact {
                 Some(MoveStart {
                     tc2_0: m0.tc2,
                     lp0: m0.lp,
-                    prof_a: self_c * (q0 - old.q),
-                    t_s: old.temp,
+                    lp_sqrt: self.r.lp_t * self_c * (q0 - old.q),
                 })
             }
             _ => None,
@@ -172,7 +171,7 @@ impl Contact {
     /// regime and heat density there; None where the general solve must run. Returns (tau,
     /// regime, q, T).
     fn hardening_on_path(&self, pm: &PathMove, t0: f64, dn: f64, dir: [f64; 2]) -> Option<OnPath> {
-        let law = HardeningLaw::new(self, pm.m_h, t0, dn, pm.start, pm.t_hist);
+        let law = HardeningLaw::new(self, pm.m_h, t0, dn, pm.start);
         let (t_h, dt_h) = law.at_hist();
         pm.t_h.set(t_h);
         let coef = pm.heat_along(dir, t_h);
@@ -315,10 +314,8 @@ struct MoveStart {
     /// tau_c2 (Pa) and L_p (m) of the start material (start node, start temperature).
     tc2_0: f64,
     lp0: f64,
-    /// The temperature profile's sqrt(s) coefficient A, K ([`crate::bristle::Along`]).
-    prof_a: f64,
-    /// The bristle's temperature at the start of the move, degC.
-    t_s: f64,
+    /// The temperature profile's sqrt(s) part in L_p ([`crate::bristle::Along::lp_sqrt`]).
+    lp_sqrt: f64,
 }
 
 impl PathMove<'_> {
@@ -416,9 +413,8 @@ struct HardeningLaw<'a> {
     cp: f64,
     /// exp(-dn / L_p) at t_hist.
     e_h: f64,
-    /// The start material under the higher-order rules, and t_hist (degC).
+    /// The start material under the higher-order rules.
     start: Option<MoveStart>,
-    t_hist: f64,
     /// Under the higher-order rules: 1/L_p of the start material (1/m), and
     /// ln(L_p(t_hist) / L_p0) (k of the profile mean at t_hist; k(T) = k_h + c_p (T -
     /// t_hist)).
@@ -428,14 +424,7 @@ struct HardeningLaw<'a> {
 
 impl<'a> HardeningLaw<'a> {
     /// The law of the contact's layer from the material at t_hist.
-    fn new(
-        c: &Contact,
-        m_h: &'a Material,
-        t0: f64,
-        dn: f64,
-        start: Option<MoveStart>,
-        t_hist: f64,
-    ) -> Self {
+    fn new(c: &Contact, m_h: &'a Material, t0: f64, dn: f64, start: Option<MoveStart>) -> Self {
         let (c2, cp) = (c.r.tc2_t, c.r.lp_t);
         let e_h = (-dn / m_h.lp).exp();
         let (i0, k_h) = match &start {
@@ -453,7 +442,6 @@ impl<'a> HardeningLaw<'a> {
             cp,
             e_h,
             start,
-            t_hist,
             i0,
             k_h,
         }
@@ -461,20 +449,18 @@ impl<'a> HardeningLaw<'a> {
 
     /// [`crate::bristle::lp_mean`] over the whole move (from the start, not cold) on the
     /// scalar path: k from k_h without a logarithm, the exponentials by pairs. `lp`: the end
-    /// material's L_p (m) at T = t_hist + `dtk`; `prof`: the temperature profile (A, B), K.
+    /// material's L_p (m) at T = t_hist + `dtk`.
     #[inline]
-    fn lp_mean(&self, r: &MoveStart, lp: f64, dtk: f64, prof: (f64, f64)) -> f64 {
+    fn lp_mean(&self, r: &MoveStart, lp: f64, dtk: f64) -> f64 {
         if !self.i0.is_finite() {
-            return crate::bristle::lp_mean(r.lp0, lp, prof, 0.0, false);
+            return crate::bristle::lp_mean(r.lp0, lp, r.lp_sqrt, 0.0, false);
         }
         let (i0, i1) = (self.i0, 1.0 / lp);
         let k = self.k_h + self.cp * dtk;
-        let (ta, tb) = prof;
-        let dt = ta + tb;
-        if ta.is_finite() && tb.is_finite() && dt.abs() > 1e-9 && k.abs() > 1e-12 {
-            let (a, b) = (ta / dt, tb / dt);
+        let c = r.lp_sqrt;
+        if c.is_finite() && c != 0.0 {
             let (x, w) = (crate::bristle::GL4_X, crate::bristle::GL4_W);
-            let arg = |u: f64| -k * (a * u + b * u * u);
+            let arg = |u: f64| -(c * u + (k - c) * u * u);
             let (e0, e1) = exp_pair(arg(x[0]), arg(x[1]));
             let (e2, e3) = exp_pair(arg(x[2]), arg(x[3]));
             let mean =
@@ -493,13 +479,7 @@ impl<'a> HardeningLaw<'a> {
     /// with [`crate::bristle::lp_mean`]).
     #[inline]
     fn stress_ho(&self, r: &MoveStart, tc2: f64, lp: f64, dtk: f64) -> f64 {
-        let dt = self.t_hist + dtk - r.t_s;
-        let ta = if dt >= 0.0 {
-            r.prof_a.clamp(0.0, dt)
-        } else {
-            r.prof_a.clamp(dt, 0.0)
-        };
-        let lpe = self.lp_mean(r, lp, dtk, (ta, dt - ta));
+        let lpe = self.lp_mean(r, lp, dtk);
         let dlt = tc2 - r.tc2_0;
         let dlt = if dlt.is_finite() { dlt } else { 0.0 };
         let x = self.dn / lpe;

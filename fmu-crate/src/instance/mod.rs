@@ -146,6 +146,10 @@ pub struct Snapshot {
     /// (as the Modelica Association's reference FMUs do), so an importer can continue a
     /// state in a freshly instantiated instance without initializing it.
     pub phase: Phase,
+    /// The scheme `rel_tol` chose for the model (None: none chose one). It travels with the
+    /// state as the grid it chose does (in the model's configuration): a state continues
+    /// in the scheme it was computed in, also in a fresh instance.
+    pub tol_scheme: Option<Scheme>,
 }
 
 /// The first non-finite output, as `name = value`.
@@ -621,6 +625,7 @@ impl Instance {
             cfg,
             model: self.model.clone(),
             phase: self.phase,
+            tol_scheme: self.tol_scheme,
         }
     }
 
@@ -646,7 +651,7 @@ impl Instance {
             ));
         }
         // the importer's threads, scheme and rel_tol stay (a serialized state does not carry
-        // them), and so does the scheme rel_tol chose
+        // them); the scheme rel_tol chose comes with the state, as the grid does
         let (threads, scheme, rel_tol) = (
             self.settings.threads,
             self.settings.scheme,
@@ -658,7 +663,7 @@ impl Instance {
         let live = matches!(s.phase, Phase::StepComplete | Phase::Terminated);
         let mut model = if live { s.model.clone() } else { None };
         if let Some(m) = model.as_mut() {
-            m.set_scheme(self.scheme());
+            m.set_scheme(s.tol_scheme.unwrap_or_else(|| self.settings.scheme()));
             if let Err(e) = m.set_threads(threads.max(1)) {
                 return self.error(format!("{F}: {e}; the instance is unchanged"));
             }
@@ -673,6 +678,7 @@ impl Instance {
         self.file_grid = None;
         self.model = model;
         self.model_current = self.model.is_some();
+        self.tol_scheme = s.tol_scheme;
         // the mode the state was taken in, whatever this instance's mode
         self.phase = s.phase;
         self.init_failed = false;

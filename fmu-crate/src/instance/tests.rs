@@ -3,7 +3,6 @@
 use super::*;
 use crate::settings::DEFAULT_REL_TOL;
 use creep_core::effects::Effect;
-use creep_core::engine::Scheme;
 use creep_core::params::P;
 use creep_core::Geometry;
 
@@ -206,7 +205,7 @@ fn rel_tol_runs_on_the_grid_and_scheme_the_table_gives_and_logs_them() {
         assert_eq!(st, Status::Ok, "{logs:?}");
         assert_eq!(i.get_integer(vr("nx")), Ok(c.nx as i32));
         assert_eq!(i.get_integer(vr("ny")), Ok(c.ny as i32));
-        let code = i32::from(c.scheme == Scheme::Continuous);
+        let code = crate::settings::scheme_code(c.scheme);
         assert_eq!(i.get_integer(vr("scheme")), Ok(code));
         assert_eq!(i.get_real(vr("rel_tol")), Ok(tol));
         let m = i.model().expect("model");
@@ -351,7 +350,7 @@ fn the_default_rel_tol_runs_in_real_time_at_20_m_s_and_an_explicit_grid_turns_it
         assert_eq!(st, Status::Ok, "{p}: {logs:?}");
         assert_eq!(i.get_integer(vr("nx")), Ok(c.nx as i32), "{p}");
         assert_eq!(i.get_integer(vr("ny")), Ok(c.ny as i32), "{p}");
-        let code = i32::from(c.scheme == Scheme::Continuous);
+        let code = crate::settings::scheme_code(c.scheme);
         assert_eq!(i.get_integer(vr("scheme")), Ok(code), "{p}");
         assert!(
             logs.iter()

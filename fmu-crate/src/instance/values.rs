@@ -173,7 +173,7 @@ impl Instance {
         if v.slot == Slot::Scheme {
             if let Some(s) = self.tol_scheme {
                 // the scheme rel_tol chose, as the parameter's code
-                return Ok(Value::Integer(i32::from(s == Scheme::Continuous)));
+                return Ok(Value::Integer(crate::settings::scheme_code(s)));
             }
         }
         let speed = self.speed();

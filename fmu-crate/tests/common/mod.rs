@@ -257,3 +257,20 @@ pub fn default_grid(cfg: &creep_core::Config, v: f64) -> creep_core::config::Gri
     let c = choose(ecf_contact::settings::DEFAULT_REL_TOL, v, None, f).expect("choice");
     creep_core::config::Grid { nx: c.nx, ny: c.ny }
 }
+
+/// The scheme the start value of `rel_tol` chooses with [`default_grid`] (the engine's
+/// default for any other model).
+#[allow(dead_code)]
+pub fn default_scheme(cfg: &creep_core::Config, v: f64) -> creep_core::engine::Scheme {
+    use creep_core::tolerance::{choose, scope_of, Filter};
+    if cfg.model != creep_core::ModelKind::Ecf {
+        return creep_core::engine::Scheme::CellsMarch;
+    }
+    let f = Filter {
+        preset: scope_of(cfg),
+        ..Filter::default()
+    };
+    choose(ecf_contact::settings::DEFAULT_REL_TOL, v, None, f)
+        .expect("choice")
+        .scheme
+}
