@@ -209,6 +209,10 @@ pub struct Filter {
     pub ny: Option<usize>,
     /// Scheme, if given ([`Scheme::Cells`] counts as `cells`).
     pub scheme: Option<Scheme>,
+    /// For a steady computation (`ecf curve`, `field`): the continuous rows are left out.
+    /// Its steady state is the cell scheme's march, and its rows measure how it steps; the
+    /// higher-order rules (`cells-ho`) change the march too, so their rows count.
+    pub steady: bool,
 }
 
 impl Filter {
@@ -216,6 +220,7 @@ impl Filter {
         self.nx.is_none_or(|n| n == nx)
             && self.ny.is_none_or(|n| n == ny)
             && self.scheme.is_none_or(|f| scheme_name(f) == scheme_name(s))
+            && !(self.steady && s == Scheme::Continuous)
     }
 }
 

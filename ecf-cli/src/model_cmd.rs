@@ -80,8 +80,9 @@ pub(crate) struct ModelArgs {
     /// Bristle grid NXxNY (cells per strip x strips), e.g. 40x21
     #[arg(long)]
     grid: Option<String>,
-    /// Relative tolerance on F_x, a fraction (0.01 = 1 %), ECF model only: the grid (and, for
-    /// step and sine, the scheme) is the cheapest in the accuracy benchmark's table whose
+    /// Relative tolerance on F_x, a fraction (0.01 = 1 %), ECF model only: the grid and
+    /// scheme (for curve and field: cells or cells-ho, whose steady marches differ) are the
+    /// cheapest in the accuracy benchmark's table whose
     /// largest F_x error over its cases at the nearest tabulated speed not below |--v-mps|
     /// (those of the preset when it is a tabulated one unchanged, else the worst over dry,
     /// table4.1 and wet) meets it (else the cheapest that cannot be ranked below the most
@@ -136,9 +137,13 @@ impl CurveArgs {
     pub(crate) fn run(&self, w: &mut Vec<u8>) -> Result<(), CreepError> {
         let m = &self.m;
         let mut cfg = m.config()?;
-        m.apply_tol(&mut cfg, None, None)?;
+        let chosen = m.apply_tol(&mut cfg, None, None)?;
         let list = parse_list(&self.cx)?;
         let mut model = m.model(&cfg)?;
+        if let Some(s) = chosen {
+            // the higher-order rules change the steady march too
+            model.set_scheme(s);
+        }
         writeln!(w, "cx,{}", out_header()).map_err(io)?;
         for c in list {
             let o = model
@@ -363,8 +368,11 @@ impl FieldArgs {
     pub(crate) fn run(&self, w: &mut Vec<u8>) -> Result<(), CreepError> {
         let m = &self.m;
         let mut cfg = m.config()?;
-        m.apply_tol(&mut cfg, None, None)?;
+        let chosen = m.apply_tol(&mut cfg, None, None)?;
         let mut model = m.model(&cfg)?;
+        if let Some(s) = chosen {
+            model.set_scheme(s);
+        }
         model
             .steady(&m.inputs(self.cx))
             .map_err(|e| rename(e, "cx", "--cx"))?;
@@ -550,8 +558,8 @@ impl ModelArgs {
 
     /// With --tol: sets the grid of `cfg` chosen from the accuracy table and returns the
     /// chosen scheme (None without --tol). `dt`: the time step (s) of a transient command;
-    /// `scheme`: None for the steady commands (curve, field: the cells scheme's rows, which
-    /// are the steady march's discretisation), else the explicit --scheme, if any. An
+    /// `scheme`: None for the steady commands (curve, field: the rows of the schemes whose
+    /// steady march they are, cells and cells-ho), else the explicit --scheme, if any. An
     /// explicit --grid or --scheme restricts the choice to the table's rows with them; a
     /// --grid not in the table is used as given, with a note that its error is not
     /// tabulated. Prints the choice on stderr.
@@ -580,17 +588,18 @@ impl ModelArgs {
             preset: tolerance::scope_of(cfg),
             nx: grid.map(|g| g.nx),
             ny: grid.map(|g| g.ny),
-            scheme: if steady {
-                Some(Scheme::CellsMarch)
-            } else {
-                explicit_scheme
-            },
+            scheme: explicit_scheme,
+            steady,
         };
         let dt = dt.filter(|d| d.is_finite() && *d > 0.0);
         match tolerance::choose(tol, self.v_mps, dt, filter) {
             Ok(c) => {
                 cfg.grid = Grid { nx: c.nx, ny: c.ny };
-                let what = if steady { " (steady: the grid)" } else { "" };
+                let what = if steady {
+                    " (steady: cells or cells-ho)"
+                } else {
+                    ""
+                };
                 let given = if grid.is_some() || explicit_scheme.is_some() {
                     " (within the explicit --grid/--scheme)"
                 } else {
@@ -598,7 +607,7 @@ impl ModelArgs {
                 };
                 let level = if c.met { "note" } else { "warning" };
                 eprintln!("{level}: --tol {tol}{what}{given}: {}", c.message());
-                Ok((!steady).then_some(c.scheme))
+                Ok(Some(c.scheme))
             }
             Err(CreepError::Config { .. }) if grid.is_some() || explicit_scheme.is_some() => {
                 eprintln!(

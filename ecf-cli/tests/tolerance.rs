@@ -10,6 +10,7 @@ const DRY: Filter = Filter {
     nx: None,
     ny: None,
     scheme: None,
+    steady: false,
 };
 
 /// A short dry creepage step at 5 m/s with 1 ms steps, plus `extra` flags.

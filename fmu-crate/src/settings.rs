@@ -563,6 +563,7 @@ impl Settings {
             nx: self.nx,
             ny: self.ny,
             scheme: (self.scheme != 0).then(|| self.scheme()),
+            steady: false,
         };
         match creep_core::tolerance::choose(rel_tol, v, None, filter) {
             Ok(c) => Some(Ok(c)),
