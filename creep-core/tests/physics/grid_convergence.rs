@@ -96,7 +96,7 @@ fn step_response(
 /// error of a creepage step's F_x to below 0.6 of the cell-by-cell rules', grid for grid,
 /// against a 320x5 reference of the same scheme (table4.1, wet, dry at 20 m/s, c_x 0.2 % -> 5 %, 0.1 ms steps, six transits).
 /// Measured against 320x5 (errors in % of the largest |f|, 20x5 / 40x5 / 80x5): table4.1
-/// cells 0.99 / 0.43 / 0.23, cells-ho 0.47 / 0.21 / 0.067; wet 1.64 / 0.74 / 0.34 against
+/// cells 0.99 / 0.43 / 0.23, cells-ho 0.45 / 0.21 / 0.061; wet 1.64 / 0.74 / 0.34 against
 /// 0.49 / 0.23 / 0.092; dry 1.47 / 1.17 / 0.33 against 0.40 / 0.22 / 0.085.
 #[test]
 fn higher_order_rules_cut_the_step_error_grid_for_grid() {
