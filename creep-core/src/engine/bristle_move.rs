@@ -224,7 +224,7 @@ impl Contact {
     /// implicit while the sub-step's temperature equation is a contraction with margin
     /// (gain < 0.8), damped only for tiny sub-steps (docs/model.md, section 6).
     #[inline]
-    fn release_weight(&self, k: &Kin, np: &NodeP, tau: [f64; 2]) -> f64 {
+    pub(super) fn release_weight(&self, k: &Kin, np: &NodeP, tau: [f64; 2]) -> f64 {
         if !(k.heat && self.r.temperature) {
             return 1.0;
         }

@@ -48,9 +48,7 @@ impl Contact {
         let old = *s;
         let mv = Move::new(&old, du);
         // the release weight theta of the general move (docs/model.md, section 6)
-        let t0 = mv.t0().max(1.0);
-        let gain = self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * self.r.release_t() / k.h;
-        let theta = if gain > 0.8 { 0.8 / gain } else { 1.0 };
+        let theta = self.release_weight(k, np, old.tau);
         // the material at t_hist (with the operating point's formula and custom factors)
         let m_h = self.material_static(np, t_hist);
         // flexibilities L + L_e and the elastic increment (Eq. 4.21); L_e does not depend on T
