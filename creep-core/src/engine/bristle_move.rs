@@ -11,6 +11,14 @@ use crate::thermal::{self, StepFactors, N_KERNEL};
 /// are 1/3 and 2/3, i.e. the mean plus 1/6 of the rise.
 pub(super) const QLIN: f64 = 1.0 / 6.0;
 
+/// The heat density of the newest interval of Eq. 4.35 under the higher-order rules, W/m^2:
+/// the mean `qbar` plus [`QLIN`] of the rise from the start stress's rate `q0` to the end
+/// stress's `q1` (each at least 0), at least 0.
+#[inline]
+pub(super) fn end_weighted_heat(qbar: f64, q1: f64, q0: f64) -> f64 {
+    (qbar + QLIN * (q1.max(0.0) - q0.max(0.0))).max(0.0)
+}
+
 /// The state between two trial states `a` and `b` of a temperature solve, at weight `w`;
 /// only within one regime (no kink between the ends).
 fn lerp(a: &BristleState, b: &BristleState, w: f64) -> Option<BristleState> {
@@ -103,8 +111,7 @@ impl Contact {
             (Some(np0), Some(mv)) => {
                 let m0 = self.material(np0, old.temp, u_abs, slip);
                 let lp_sqrt = if self.r.temperature && k.heat {
-                    let q0 = (self.r.kq * (old.tau[0] * du[0] + old.tau[1] * du[1]) / k.h).max(0.0);
-                    self.r.lp_t * self_c * (q0 - old.q)
+                    self.lp_sqrt(k, self_c, &old, du)
                 } else {
                     f64::NAN
                 };
@@ -154,7 +161,7 @@ impl Contact {
                     let q1 = self.r.kq * (ns.tau[0] * dux + ns.tau[1] * duy) / k.h;
                     let q0 = self.r.kq * (old.tau[0] * dux + old.tau[1] * duy) / k.h;
                     ns.q = qbar;
-                    (qbar + QLIN * (q1.max(0.0) - q0.max(0.0))).max(0.0)
+                    end_weighted_heat(qbar, q1, q0)
                 } else {
                     qbar
                 }
@@ -203,6 +210,16 @@ impl Contact {
             fac.accumulate(acc, q); // alpha is folded into alpha_c
         }
         q
+    }
+
+    /// [`bristle::Along::lp_sqrt`] of the move of bristle `old` by the rigid slip `du` (m)
+    /// under the higher-order rules: X_T,Lp A, A = `self_c` times the jump of the heat rate at
+    /// the start of the move (the old stress over the rigid slip against the previous move's
+    /// mean heat).
+    #[inline]
+    pub(super) fn lp_sqrt(&self, k: &Kin, self_c: f64, old: &BristleState, du: [f64; 2]) -> f64 {
+        let q0 = (self.r.kq * (old.tau[0] * du[0] + old.tau[1] * du[1]) / k.h).max(0.0);
+        self.r.lp_t * self_c * (q0 - old.q)
     }
 
     /// The temperature of a bristle from its heat history (all but the newest interval,

@@ -69,11 +69,10 @@ impl Contact {
                     return None;
                 }
                 let m0 = self.material_static(np0, old.temp);
-                let q0 = (self.r.kq * (old.tau[0] * du[0] + old.tau[1] * du[1]) / k.h).max(0.0);
                 Some(MoveStart {
                     tc2_0: m0.tc2,
                     lp0: m0.lp,
-                    lp_sqrt: self.r.lp_t * self_c * (q0 - old.q),
+                    lp_sqrt: self.lp_sqrt(k, self_c, &old, du),
                 })
             }
             _ => None,
@@ -368,7 +367,7 @@ impl PathMove<'_> {
         if self.ho {
             // as the general move: the end-weighted heat from the parts, each at least 0
             let (qbar, q1, q0) = self.heat_parts(tau, tau_r);
-            return (qbar + super::bristle_move::QLIN * (q1.max(0.0) - q0.max(0.0))).max(0.0);
+            return super::bristle_move::end_weighted_heat(qbar, q1, q0);
         }
         let (du, l, old) = (self.mv.du(), self.l, self.old);
         let dux = du[0] - l[0] * (tau_r[0] - old.tau[0]);
