@@ -61,10 +61,15 @@ impl Contact {
                 self.move_bristle_with(j, xi, &sp.nodes[slot + 1], np0, kin, &fac, s, ac);
             }
         } else {
+            // partial moves start on the lattice nodes (the bristles are at their node
+            // states): the start node's pressure parts (higher-order rules) are cached
+            self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
             for slot in skip..inside.min(end) {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
-                self.move_bristle(j, xi, kin, &fac, &mut sp.st[id], &mut sp.acc[id]);
+                let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
+                let np0 = (slot > 0).then(|| &sp.nodes[slot]);
+                self.move_bristle(j, xi, np0, kin, &fac, s, ac);
             }
         }
     }
@@ -95,12 +100,15 @@ impl Contact {
     /// (normalized). The material is taken at the end of the sub-step (Eq. 4.5), but never
     /// closer to the trailing edge than [`super::grid::TRAILING_NODE`] of a cell: the last node
     /// stands for the last cell (docs/model.md section 3); the spin lever arm is the path's
-    /// midpoint.
+    /// midpoint. `np0`: the start node's pressure parts where cached (see
+    /// [`Self::move_bristle_with`]).
     #[inline]
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn move_bristle(
         &self,
         j: usize,
         xi_end: f64,
+        np0: Option<&NodeP>,
         kin: &Kin,
         fac: &StepFactors,
         s: &mut BristleState,
@@ -112,7 +120,7 @@ impl Contact {
             xi_end.max(-self.ell[j] + super::grid::TRAILING_NODE * dxi),
             self.eta[j],
         );
-        self.move_bristle_with(j, xi_end, &np, None, kin, fac, s, acc);
+        self.move_bristle_with(j, xi_end, &np, np0, kin, fac, s, acc);
     }
 
     /// [`Self::move_bristle`] with the pressure parts `np` of the end node given (the march
@@ -143,6 +151,11 @@ impl Contact {
                 let f = i as f64 / EDGE_SUB as f64;
                 f * f
             };
+            // the sub-moves' kernel factors from one exp and expm1 per term
+            let heat = self.r.temperature && kin.heat;
+            let graded = heat.then(|| self.kernel.graded_factors::<EDGE_SUB>(kin.h));
+            // sub-move i starts where i - 1 ended: its start node is that one's end node
+            let mut np_prev: Option<NodeP> = None;
             for i in 1..=EDGE_SUB {
                 let df = frac(i) - frac(i - 1);
                 let (h, d) = (kin.h * df, kin.dist * df);
@@ -156,10 +169,9 @@ impl Contact {
                     },
                     ..*kin
                 };
-                let fi = if self.r.temperature && kin.heat {
-                    self.kernel.factors(h)
-                } else {
-                    StepFactors::identity(h)
+                let fi = match &graded {
+                    Some(g) => g[i - 1],
+                    None => StepFactors::identity(h),
                 };
                 let xe = if i == EDGE_SUB {
                     xi_end
@@ -175,7 +187,8 @@ impl Contact {
                         self.eta[j],
                     )
                 };
-                self.move_bristle_one(j, xe, &npi, None, &ki, &fi, s, acc);
+                self.move_bristle_one(j, xe, &npi, np_prev.as_ref(), &ki, &fi, s, acc);
+                np_prev = Some(npi);
             }
             return;
         }
@@ -318,6 +331,7 @@ impl Contact {
                 self.move_bristle(
                     j,
                     self.ell[j] - (k as f64 + phase_end) * dxi,
+                    (k > 0).then(|| &nodes[k]),
                     &kin_part,
                     &fac_part,
                     &mut ps,
@@ -535,15 +549,15 @@ impl Contact {
                                 } else {
                                     xi_start - p as f64 * fine.dist / a
                                 };
-                                self.move_bristle(j, xe, fine, fine_fac, s, ac);
+                                self.move_bristle(j, xe, None, fine, fine_fac, s, ac);
                             }
                         }
                         Some((fine, fine_fac, rest, rest_fac)) if i == n_sub => {
                             let xe = xi_start - rest.dist / a;
-                            self.move_bristle(j, xe, rest, rest_fac, s, ac);
-                            self.move_bristle(j, xi_end, fine, fine_fac, s, ac);
+                            self.move_bristle(j, xe, None, rest, rest_fac, s, ac);
+                            self.move_bristle(j, xi_end, None, fine, fine_fac, s, ac);
                         }
-                        _ => self.move_bristle(j, xi_end, &kin, &fac, s, ac),
+                        _ => self.move_bristle(j, xi_end, None, &kin, &fac, s, ac),
                     }
                 }
             }
