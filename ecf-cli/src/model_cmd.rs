@@ -46,6 +46,44 @@ impl TransientArgs {
     }
 }
 
+/// The schemes of a steady computation: the steady state is the cells' march, which the
+/// higher-order rules change (the continuous scheme's steady state is the cells march).
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum SteadySchemeArg {
+    /// Cell by cell (the default)
+    Cells,
+    /// Cell by cell with the higher-order rules along each move (docs/model.md section 9,
+    /// step 8)
+    CellsHo,
+}
+
+#[derive(Args, Clone)]
+pub(crate) struct SteadyArgs {
+    /// How the steady march integrates a move: cells (default) or cells-ho (higher-order
+    /// rules along each move; docs/model.md sections 3 and 9). Default: cells, or the scheme
+    /// --tol chooses among these two
+    #[arg(long, value_enum)]
+    scheme: Option<SteadySchemeArg>,
+}
+
+impl SteadyArgs {
+    /// The scheme given explicitly, if any.
+    fn explicit(&self) -> Option<Scheme> {
+        self.scheme.map(|s| match s {
+            SteadySchemeArg::Cells => Scheme::CellsMarch,
+            SteadySchemeArg::CellsHo => Scheme::CellsHigher,
+        })
+    }
+
+    /// Sets the scheme: the explicit one, else the one --tol chose; else the model's default
+    /// (cells) stays.
+    fn apply(&self, model: &mut Model, chosen: Option<Scheme>) {
+        if let Some(s) = self.explicit().or(chosen) {
+            model.set_scheme(s);
+        }
+    }
+}
+
 #[derive(Args, Clone)]
 pub(crate) struct ModelArgs {
     /// Model: ecf, fastsim or polach
@@ -128,6 +166,8 @@ fn warn(m: &mut Model) {
 pub(crate) struct CurveArgs {
     #[command(flatten)]
     m: ModelArgs,
+    #[command(flatten)]
+    st: SteadyArgs,
     /// Creepages: comma separated (0.001,0.01) or start:stop:n (0.001:0.5:50), dimensionless
     #[arg(long, allow_hyphen_values = true)]
     cx: String,
@@ -137,13 +177,11 @@ impl CurveArgs {
     pub(crate) fn run(&self, w: &mut Vec<u8>) -> Result<(), CreepError> {
         let m = &self.m;
         let mut cfg = m.config()?;
-        let chosen = m.apply_tol(&mut cfg, None, None)?;
+        let chosen = m.apply_tol(&mut cfg, None, true, self.st.explicit())?;
         let list = parse_list(&self.cx)?;
         let mut model = m.model(&cfg)?;
-        if let Some(s) = chosen {
-            // the higher-order rules change the steady march too
-            model.set_scheme(s);
-        }
+        // the higher-order rules change the steady march too
+        self.st.apply(&mut model, chosen);
         writeln!(w, "cx,{}", out_header()).map_err(io)?;
         for c in list {
             let o = model
@@ -202,7 +240,7 @@ impl StepArgs {
         }
         let latest = at.iter().copied().fold(0.0, f64::max);
         check_step_count("--dt-ms", dt_ms, latest / dt_ms)?;
-        let chosen = m.apply_tol(&mut cfg, Some(dt_ms * 1e-3), Some(self.tr.explicit()))?;
+        let chosen = m.apply_tol(&mut cfg, Some(dt_ms * 1e-3), false, self.tr.explicit())?;
         let mut model = m.model(&cfg)?;
         self.tr.apply(&mut model, chosen);
         let mut o = model
@@ -263,7 +301,7 @@ impl StepArgs {
             return Err(bad("--dt-ms", dt_ms, "must be > 0 and <= --duration-ms"));
         }
         check_step_count("--dt-ms", dt_ms, duration_ms / dt_ms)?;
-        let chosen = m.apply_tol(&mut cfg, Some(dt_ms * 1e-3), Some(self.tr.explicit()))?;
+        let chosen = m.apply_tol(&mut cfg, Some(dt_ms * 1e-3), false, self.tr.explicit())?;
         let mut model = m.model(&cfg)?;
         self.tr.apply(&mut model, chosen);
         let o = model
@@ -332,7 +370,7 @@ impl SineArgs {
             cycles as f64 * steps_per_cycle as f64,
         )?;
         let dt = 1.0 / (freq_hz * steps_per_cycle as f64);
-        let chosen = m.apply_tol(&mut cfg, Some(dt), Some(self.tr.explicit()))?;
+        let chosen = m.apply_tol(&mut cfg, Some(dt), false, self.tr.explicit())?;
         let mut model = m.model(&cfg)?;
         self.tr.apply(&mut model, chosen);
         let o = model
@@ -359,6 +397,8 @@ impl SineArgs {
 pub(crate) struct FieldArgs {
     #[command(flatten)]
     m: ModelArgs,
+    #[command(flatten)]
+    st: SteadyArgs,
     /// Creepage, dimensionless
     #[arg(long, allow_hyphen_values = true)]
     cx: f64,
@@ -368,11 +408,9 @@ impl FieldArgs {
     pub(crate) fn run(&self, w: &mut Vec<u8>) -> Result<(), CreepError> {
         let m = &self.m;
         let mut cfg = m.config()?;
-        let chosen = m.apply_tol(&mut cfg, None, None)?;
+        let chosen = m.apply_tol(&mut cfg, None, true, self.st.explicit())?;
         let mut model = m.model(&cfg)?;
-        if let Some(s) = chosen {
-            model.set_scheme(s);
-        }
+        self.st.apply(&mut model, chosen);
         model
             .steady(&m.inputs(self.cx))
             .map_err(|e| rename(e, "cx", "--cx"))?;
@@ -558,8 +596,8 @@ impl ModelArgs {
 
     /// With --tol: sets the grid of `cfg` chosen from the accuracy table and returns the
     /// chosen scheme (None without --tol). `dt`: the time step (s) of a transient command;
-    /// `scheme`: None for the steady commands (curve, field: the rows of the schemes whose
-    /// steady march they are, cells and cells-ho), else the explicit --scheme, if any. An
+    /// `steady`: a steady command (curve, field: the rows of the schemes whose steady march
+    /// they are, cells and cells-ho); `explicit_scheme`: the explicit --scheme, if any. An
     /// explicit --grid or --scheme restricts the choice to the table's rows with them; a
     /// --grid not in the table is used as given, with a note that its error is not
     /// tabulated. Prints the choice on stderr.
@@ -567,7 +605,8 @@ impl ModelArgs {
         &self,
         cfg: &mut Config,
         dt: Option<f64>,
-        scheme: Option<Option<Scheme>>,
+        steady: bool,
+        explicit_scheme: Option<Scheme>,
     ) -> Result<Option<Scheme>, CreepError> {
         let Some(tol) = self.tol else {
             return Ok(None);
@@ -581,8 +620,6 @@ impl ModelArgs {
                 ),
             });
         }
-        let steady = scheme.is_none();
-        let explicit_scheme = scheme.flatten();
         let grid = self.grid.as_ref().map(|_| cfg.grid);
         let filter = Filter {
             preset: tolerance::scope_of(cfg),

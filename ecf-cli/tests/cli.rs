@@ -513,6 +513,61 @@ fn step_and_sine_take_the_scheme() {
 }
 
 #[test]
+fn curve_and_field_take_the_steady_scheme() {
+    // the steady commands take --scheme cells (the default) or cells-ho, whose higher-order
+    // rules change the steady march by about the grid's error; continuous, whose steady
+    // state is the cells march, is refused with the accepted values
+    let curve = |scheme: Option<&str>| {
+        let mut args = vec![
+            "curve", "--preset", "wet", "--grid", "20x5", "--v-mps", "30",
+        ];
+        args.extend(["--cx", "0.01,0.15"]);
+        if let Some(s) = scheme {
+            args.extend(["--scheme", s]);
+        }
+        let (code, out, err) = ecf(&args);
+        assert_eq!(code, 0, "{err}");
+        out.lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(1).unwrap().parse::<f64>().unwrap())
+            .collect::<Vec<f64>>()
+    };
+    let default = curve(None);
+    assert_eq!(default, curve(Some("cells")));
+    let ho = curve(Some("cells-ho"));
+    for (h, d) in ho.iter().zip(&default) {
+        assert!(h != d, "cells-ho must change the steady march: {h} vs {d}");
+        assert!((h - d).abs() < 0.03 * d, "{h} vs {d}");
+    }
+    let field = |scheme: &str| {
+        let args = [
+            "field", "--preset", "wet", "--grid", "20x5", "--v-mps", "30", "--cx", "0.05",
+            "--scheme", scheme,
+        ];
+        let (code, out, err) = ecf(&args);
+        assert_eq!(code, 0, "{err}");
+        out
+    };
+    assert_ne!(field("cells"), field("cells-ho"));
+    let (code, _, err) = ecf(&["curve", "--cx", "0.01", "--scheme", "continuous"]);
+    assert_ne!(code, 0);
+    assert!(
+        err.contains("--scheme") && err.contains("cells-ho"),
+        "{err}"
+    );
+    // with --tol the explicit scheme restricts the choice to its rows
+    let (code, _, err) = ecf(&[
+        "curve", "--preset", "dry", "--v-mps", "20", "--cx", "0.01", "--tol", "0.02", "--scheme",
+        "cells",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("within the explicit --grid/--scheme") && err.contains("scheme cells:"),
+        "{err}"
+    );
+}
+
+#[test]
 fn a_formula_nested_ten_thousand_deep_is_an_error_not_a_crash() {
     let dir = std::env::temp_dir().join(format!("ecf_cli_deep_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
