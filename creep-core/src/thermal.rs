@@ -107,7 +107,7 @@ impl Kernel {
 
     /// Decay factors exp(-s_k h) and increments (1 - exp(-s_k h))/s_k for a sub-step `h`.
     /// Two terms at a time by [`crate::material::exp_m1_pair`] (exp and exp_m1 within 1e-15
-    /// of the C library's, about a sixth of its cost).
+    /// of the C library's, inlined).
     pub fn step_factors(&self, h: f64) -> ([f64; N_KERNEL], [f64; N_KERNEL]) {
         let mut decay = [1.0; N_KERNEL];
         let mut gain = [h; N_KERNEL];

@@ -61,14 +61,16 @@ impl Contact {
                 self.move_bristle_with(j, xi, &sp.nodes[slot + 1], np0, kin, &fac, s, ac);
             }
         } else {
-            // partial moves start on the lattice nodes (the bristles are at their node
-            // states): the start node's pressure parts (higher-order rules) are cached
-            self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
+            // partial moves start on the lattice nodes (the march's bristles are at their
+            // node states): the start node's pressure parts (higher-order rules) are cached
+            if self.ho {
+                self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
+            }
             for slot in skip..inside.min(end) {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
-                let np0 = (slot > 0).then(|| &sp.nodes[slot]);
+                let np0 = (self.ho && slot > 0).then(|| &sp.nodes[slot]);
                 self.move_bristle(j, xi, np0, kin, &fac, s, ac);
             }
         }
