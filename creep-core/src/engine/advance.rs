@@ -48,6 +48,11 @@ impl Contact {
         let dxi = 2.0 * self.ell[j] / nx as f64;
         let fac = self.factors(sp.fac, kin.h, kin.heat);
         let inside = if phase_end > 0.0 { nx } else { nx + 1 };
+        // the moves start on the lattice nodes where the bristles are at their node states
+        // (whole-cell commit): the move covers phase_end of a cell. Not so after the node
+        // states were reset where the bristles stand (a reversal, a lift-off, an old state)
+        let from_nodes =
+            self.start_cache && (kin.dist / self.patch.a - phase_end * dxi).abs() <= 1e-9 * dxi;
         if phase_end == 1.0 {
             // full-cell moves end on the lattice nodes: their pressure parts are cached
             self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
@@ -57,20 +62,21 @@ impl Contact {
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
                 // the move's start node (higher-order rules): lattice node `slot`, cached
                 // except at the leading edge
-                let np0 = (slot > 0).then(|| &sp.nodes[slot]);
+                let np0 = (from_nodes && slot > 0).then(|| &sp.nodes[slot]);
                 self.move_bristle_with(j, xi, &sp.nodes[slot + 1], np0, kin, &fac, s, ac);
             }
         } else {
-            // partial moves start on the lattice nodes (the march's bristles are at their
-            // node states): the start node's pressure parts (higher-order rules) are cached
-            if self.ho {
+            // partial moves from the lattice nodes: the start node's pressure parts
+            // (higher-order rules) are cached
+            let from_nodes = self.ho && from_nodes;
+            if from_nodes {
                 self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
             }
             for slot in skip..inside.min(end) {
                 let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
-                let np0 = (self.ho && slot > 0).then(|| &sp.nodes[slot]);
+                let np0 = (from_nodes && slot > 0).then(|| &sp.nodes[slot]);
                 self.move_bristle(j, xi, np0, kin, &fac, s, ac);
             }
         }
@@ -190,7 +196,7 @@ impl Contact {
                     )
                 };
                 self.move_bristle_one(j, xe, &npi, np_prev.as_ref(), &ki, &fi, s, acc);
-                np_prev = Some(npi);
+                np_prev = self.start_cache.then_some(npi);
             }
             return;
         }
@@ -333,7 +339,7 @@ impl Contact {
                 self.move_bristle(
                     j,
                     self.ell[j] - (k as f64 + phase_end) * dxi,
-                    (k > 0).then(|| &nodes[k]),
+                    (self.start_cache && k > 0).then(|| &nodes[k]),
                     &kin_part,
                     &fac_part,
                     &mut ps,
@@ -354,7 +360,7 @@ impl Contact {
                     j,
                     self.ell[j] - (k as f64 + 1.0) * dxi,
                     &nodes[k + 1],
-                    (k > 0).then(|| &nodes[k]),
+                    (self.start_cache && k > 0).then(|| &nodes[k]),
                     &kin_full,
                     &fac_full,
                     &mut s,

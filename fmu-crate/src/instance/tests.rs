@@ -357,7 +357,10 @@ fn the_default_rel_tol_runs_in_real_time_at_20_m_s_and_an_explicit_grid_turns_it
             "{p}: {logs:?}"
         );
     }
-    // a changed parameter: the worst over every preset
+    // a changed parameter: the worst over every preset, also in real time at 0.25 ms
+    let at_step = tolerance::choose(DEFAULT_REL_TOL, 20.0, Some(2.5e-4), Filter::default());
+    let at_step = at_step.expect("choice");
+    assert!(at_step.met && at_step.cost < 1.0, "{at_step:?}");
     let all = tolerance::choose(DEFAULT_REL_TOL, 20.0, None, Filter::default()).expect("c");
     let mut i = Instance::new("t", None, true);
     assert_eq!(i.set_real(vr("v"), 20.0), Status::Ok);
