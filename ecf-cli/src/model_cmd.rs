@@ -21,6 +21,17 @@ pub(crate) enum SchemeArg {
     CellsHo,
 }
 
+impl SchemeArg {
+    /// The engine's scheme of a name (`cells` is [`Scheme::CellsMarch`]).
+    fn scheme(self) -> Scheme {
+        match self {
+            SchemeArg::Cells => Scheme::CellsMarch,
+            SchemeArg::Continuous => Scheme::Continuous,
+            SchemeArg::CellsHo => Scheme::CellsHigher,
+        }
+    }
+}
+
 #[derive(Args, Clone)]
 pub(crate) struct TransientArgs {
     /// How a time step advances the bristles: cells (reference), continuous (faster) or
@@ -33,11 +44,7 @@ pub(crate) struct TransientArgs {
 impl TransientArgs {
     /// The scheme given explicitly, if any.
     fn explicit(&self) -> Option<Scheme> {
-        self.scheme.map(|s| match s {
-            SchemeArg::Cells => Scheme::CellsMarch,
-            SchemeArg::Continuous => Scheme::Continuous,
-            SchemeArg::CellsHo => Scheme::CellsHigher,
-        })
+        self.scheme.map(SchemeArg::scheme)
     }
 
     /// Sets the scheme: the explicit one, else the one --tol chose, else cells.
@@ -69,9 +76,12 @@ pub(crate) struct SteadyArgs {
 impl SteadyArgs {
     /// The scheme given explicitly, if any.
     fn explicit(&self) -> Option<Scheme> {
-        self.scheme.map(|s| match s {
-            SteadySchemeArg::Cells => Scheme::CellsMarch,
-            SteadySchemeArg::CellsHo => Scheme::CellsHigher,
+        self.scheme.map(|s| {
+            match s {
+                SteadySchemeArg::Cells => SchemeArg::Cells,
+                SteadySchemeArg::CellsHo => SchemeArg::CellsHo,
+            }
+            .scheme()
         })
     }
 
