@@ -332,7 +332,9 @@ impl Resolved {
     ///   the temperature solve; tau_c1(T) enters only as the floor max(tau_c1(T), Voce) of a
     ///   bristle riding on the yield surface, over a bounded temperature range
     ///   ((tau_c1 - t_Voce) / (tau_c1 X_c1), a fraction of a kelvin) and so with bounded
-    ///   release heat. With tau_c1's coefficient in X (the rule before issue 24 step 7),
+    ///   release heat, as long as the gain of the ride stays below 1; a bristle that may
+    ///   ride takes [`Self::release_t_riding`]. With tau_c1's coefficient in X for every move
+    ///   (the rule before issue 24 step 7),
     ///   theta damped hardening and sliding bristles of dry (tau_c1 0.034 /K against tau_c2
     ///   0.0025 /K) and wet (0.55 against 0.0015 /K) by a weight that depends on the cell
     ///   length: the fine grids drifted (dry, 20 m/s, c_x 1.06 %: +1.8 % on 640 cells).
@@ -344,6 +346,17 @@ impl Resolved {
             Rule::SameCharacteristic => self.tc2_t.max(self.lp_t),
             Rule::ElasticUnloading => self.tc1_t.max(self.tc2_t).max(self.lp_t),
         }
+    }
+
+    /// [`Self::release_t`] for a plastic bristle below tau_c1 at the temperature of its heat
+    /// history, which may ride on tau_c1 over the move: there its heat follows tau_c1(T), so
+    /// tau_c1's coefficient counts too. Without it, on short moves (dry: cells shorter than
+    /// about 25 um) the gain of the ride passed 1 and the solve's only root was the elastic
+    /// one at t_hist: the bristle left tau_c1 for one cell and yielded again higher
+    /// (docs/model.md, section 6 and section 9 step 10).
+    #[inline]
+    pub(crate) fn release_t_riding(&self) -> f64 {
+        self.release_t().max(self.tc1_t)
     }
 
     /// True if the layer's parameters only soften it as it heats (tau_c1, tau_c2 fall and

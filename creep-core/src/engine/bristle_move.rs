@@ -19,6 +19,12 @@ pub(super) fn end_weighted_heat(qbar: f64, q1: f64, q0: f64) -> f64 {
     (qbar + QLIN * (q1.max(0.0) - q0.max(0.0))).max(0.0)
 }
 
+/// |tau|, Pa.
+#[inline]
+fn u_norm(tau: [f64; 2]) -> f64 {
+    (tau[0] * tau[0] + tau[1] * tau[1]).sqrt()
+}
+
 /// The state between two trial states `a` and `b` of a temperature solve, at weight `w`;
 /// only within one regime (no kink between the ends).
 fn lerp(a: &BristleState, b: &BristleState, w: f64) -> Option<BristleState> {
@@ -68,7 +74,18 @@ impl Contact {
             0.0
         };
         let release_ref: std::cell::Cell<Option<[f64; 2]>> = std::cell::Cell::new(None);
-        let theta = self.release_weight(k, np, old.tau);
+        // A plastic bristle below the yield stress tau_c1 of its heat history's temperature
+        // may ride on tau_c1 in this move (the floor of the law, `bristle::update`), where its
+        // heat follows tau_c1(T): the release weight then bounds tau_c1's temperature
+        // coefficient too (docs/model.md, section 9, step 10). The material at t_hist is the
+        // solve's first evaluation, kept for it.
+        let m_plastic = (self.r.temperature
+            && k.heat
+            && old.regime == bristle::Regime::Plastic
+            && self.r.rule == bristle::Rule::SameCharacteristic)
+            .then(|| self.material(np, t_hist, u_abs, slip));
+        let riding = m_plastic.is_some_and(|m| u_norm(old.tau) < m.tc1);
+        let theta = self.release_weight(k, np, old.tau, riding);
         // flexibilities L + L_e and the elastic increment (Eq. 4.21) for the layer's L_e
         let flex = |le: f64| k.flex(le, [x, y]);
         // Without a temperature coefficient of L_e (every preset) and without formula
@@ -83,7 +100,7 @@ impl Contact {
         // heat flows only over the plastic remainder (1 - lambda) h of the move, so that its
         // self-heating is 2 alpha C q sqrt(h) / sqrt(1 - lambda) for the move's mean heat
         // density q (docs/model.md, section 9).
-        let mut m_hist = None;
+        let mut m_hist = m_plastic;
         let mut self_c = self_c;
         if let Some(mv) = mv.as_mut() {
             if self.r.temperature && k.heat && old.regime == bristle::Regime::Elastic {
@@ -175,6 +192,30 @@ impl Contact {
         // whose heat falls with T) and the release is not damped; otherwise (or when a trial
         // state is not sliding) the full solve from t_hist. Plastic bristles are left to the
         // full solve: an elastic state at t_hist can be the smallest root there.
+        // The reference of the damped release (theta < 1) of a bristle that heated in its
+        // previous move: its stress at the predictor t_hist + self_c q_prev, the estimate of
+        // its end temperature for a heat that goes on (the first evaluation sets it). At
+        // t_hist instead, colder by the previous move's own heat (O(sqrt h)), the damped
+        // release took the stress change of that cooling, which outweighs the move's heat
+        // (O(h)): on fine grids a bristle riding on tau_c1 jumped off it and the sliding
+        // zone lost heat (docs/model.md, section 9, step 10). Under the higher-order rules the
+        // temperature of the previous move is the end-weighted heat's and its history the
+        // mean heat's, so on short moves the predictor misses the bristle's temperature by
+        // their difference: there only a riding bristle takes it. (Measured for the default
+        // rule, the same characteristic; elastic unloading keeps t_hist.)
+        if theta < 1.0
+            && self_c > 0.0
+            && old.q > 0.0
+            && self.r.rule == bristle::Rule::SameCharacteristic
+            && (riding || np0.is_none())
+        {
+            let (at_predictor, _) = eval(t_hist + self_c * old.q);
+            if !(at_predictor.tau[0].is_finite() && at_predictor.tau[1].is_finite()) {
+                // a runaway heat history (a layer whose compliance grows with T without
+                // bound): the reference stays at t_hist
+                release_ref.set(None);
+            }
+        }
         let sliding = |s: &BristleState| s.regime == bristle::Regime::Sliding;
         let predicted =
             if self.r.temperature && self_c > 0.0 && old.q > 0.0 && theta == 1.0 && sliding(&old) {
@@ -239,13 +280,19 @@ impl Contact {
     /// like 1/sqrt(h): below ~1 us the implicit solve would run away (the half-space kernel
     /// has no heat capacity of the layer to stop it). theta = min(1, 0.8/gain): fully
     /// implicit while the sub-step's temperature equation is a contraction with margin
-    /// (gain < 0.8), damped only for tiny sub-steps (docs/model.md, section 6).
+    /// (gain < 0.8), damped only for tiny sub-steps (docs/model.md, section 6). `riding`: the
+    /// bristle may ride on tau_c1 in this move, whose coefficient then counts in X_T
+    /// ([`crate::material::Resolved::release_t_riding`]).
     #[inline]
-    pub(super) fn release_weight(&self, k: &Kin, np: &NodeP, tau: [f64; 2]) -> f64 {
+    pub(super) fn release_weight(&self, k: &Kin, np: &NodeP, tau: [f64; 2], riding: bool) -> f64 {
         if !(k.heat && self.r.temperature) {
             return 1.0;
         }
-        let cmax = self.r.release_t();
+        let cmax = if riding {
+            self.r.release_t_riding()
+        } else {
+            self.r.release_t()
+        };
         let t0 = (tau[0] * tau[0] + tau[1] * tau[1]).sqrt().max(1.0);
         let gain = k.self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * cmax / k.h;
         if gain > 0.8 {

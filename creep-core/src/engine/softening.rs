@@ -16,7 +16,7 @@
 
 use super::kin::Kin;
 use super::Contact;
-use crate::bristle::{BristleState, Material, Move, Regime, SofteningPath};
+use crate::bristle::{BristleState, Material, Move, Regime, Rule, SofteningPath};
 use crate::material::{exp_fast, exp_pair, NodeP};
 use crate::thermal::{self, StepFactors, N_KERNEL};
 
@@ -48,12 +48,22 @@ impl Contact {
         let old = *s;
         let mv = Move::new(&old, du);
         // the release weight theta of the general move (docs/model.md, section 6)
-        let theta = self.release_weight(k, np, old.tau);
+        let theta = self.release_weight(k, np, old.tau, false);
+        // the damped release of a bristle that heated takes its reference at the predictor
+        // in the general move (outside the higher-order rules); here it would be at t_hist
+        if theta < 1.0 && old.q > 0.0 && np0.is_none() && self.r.rule == Rule::SameCharacteristic {
+            return None;
+        }
         // the material at t_hist (with the operating point's formula and custom factors)
         let m_h = self.material_static(np, t_hist);
         // flexibilities L + L_e and the elastic increment (Eq. 4.21); L_e does not depend on T
         let (lxe, lye, dtau) = k.flex(m_h.le, [x, y]);
         let path = mv.softening_path(&old, dtau, &m_h)?;
+        // a plastic bristle elastic at t_hist may ride on tau_c1 (the release weight then
+        // counts tau_c1's coefficient, `riding` in the general move)
+        if old.regime == Regime::Plastic && path == SofteningPath::Elastic {
+            return None;
+        }
         // The higher-order rules (docs/model.md section 9, step 8): the heat weighs the end
         // stress by 1/2 + QLIN; a hardening bristle's law takes tau_c2 linear along the move
         // from the start material's and the mean 1/L_p along the temperature profile
