@@ -7,8 +7,9 @@
 //! 30 %, on 20x5, 40x11, 80x21 (the default), 160x42 and 320x84, and the creepage where
 //! 80x21's error is largest. The reference is the finest grid, not an extrapolated limit: where
 //! 160x42 and 320x84 are further from it than 80x21, the reference itself has not converged
-//! (dry: cells shorter than about 27 um, 640 cells and more, carry the yield-surface chatter
-//! of docs/model.md section 6; before issue 24 step 7 also the release weight's drift).
+//! (before issue 24 step 10, dry's cells shorter than about 27 um, 640 cells and more,
+//! carried the yield-surface chatter of docs/model.md section 6; before step 7 also the
+//! release weight's drift).
 use crate::accuracy::{config, FN};
 use creep_core::{Contact, Inputs};
 

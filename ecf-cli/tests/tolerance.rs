@@ -1,5 +1,4 @@
 //! `--tol`: the grid and scheme chosen from creep-core's accuracy table, printed on stderr; explicit --grid and --scheme override it; bad tolerances are refused.
-use creep_core::engine::Scheme;
 use creep_core::tolerance::{self, Filter};
 mod common;
 use common::ecf;
@@ -102,12 +101,13 @@ fn explicit_grid_and_scheme_override_tol() {
 
 #[test]
 fn a_tolerance_no_grid_meets_is_a_warning_with_the_error_reached() {
+    // the choice `ecf curve --tol` makes: a steady computation, cells or cells-ho
     let c = tolerance::choose(
         1e-5,
         20.0,
         None,
         Filter {
-            scheme: Some(Scheme::CellsMarch),
+            steady: true,
             ..DRY
         },
     )
