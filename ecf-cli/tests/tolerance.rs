@@ -121,7 +121,12 @@ fn a_tolerance_no_grid_meets_is_a_warning_with_the_error_reached() {
     assert!(
         err.contains("warning")
             && err.contains("NOT met")
-            && err.contains(&format!("grid {}x{}", c.nx, c.ny)),
+            && err.contains(&format!(
+                "grid {}x{}, scheme {}",
+                c.nx,
+                c.ny,
+                tolerance::scheme_name(c.scheme)
+            )),
         "{err}"
     );
 }

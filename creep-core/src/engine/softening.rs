@@ -8,7 +8,10 @@
 //! tau_c2), the law is a scalar function of T with an analytic derivative: Newton's method
 //! on it needs about one exponential per move, and the new state follows from the root.
 //! Elsewhere (unloading from the plastic branch, a trial that crosses the yield surface,
-//! heat that rises with T faster than the solve can bound) the general solve runs.
+//! heat that rises with T faster than the solve can bound, a plastic bristle below tau_c1
+//! at t_hist that may ride on it, and, outside the higher-order rules, a damped release of a
+//! bristle that heated, whose reference is at its predictor: docs/model.md section 9, step
+//! 10) the general solve runs.
 //! Formula and custom effects that depend on the operating point only scale the strengths
 //! by constants and keep the layer softening; effects on the local bristle state (p, T,
 //! |u|, slip) take the general solve. Results agree with the general solve within its
