@@ -187,11 +187,6 @@ impl Contact {
             };
             (ns, q)
         };
-        // A sliding bristle that heated in its previous move starts the solve at the
-        // predictor; this is valid where the root is unique (a bristle sliding at tau_c2(T),
-        // whose heat falls with T) and the release is not damped; otherwise (or when a trial
-        // state is not sliding) the full solve from t_hist. Plastic bristles are left to the
-        // full solve: an elastic state at t_hist can be the smallest root there.
         // The reference of the damped release (theta < 1) of a bristle that heated in its
         // previous move: its stress at the predictor t_hist + self_c q_prev, the estimate of
         // its end temperature for a heat that goes on (the first evaluation sets it). At
@@ -211,11 +206,16 @@ impl Contact {
         {
             let (at_predictor, _) = eval(t_hist + self_c * old.q);
             if !(at_predictor.tau[0].is_finite() && at_predictor.tau[1].is_finite()) {
-                // a runaway heat history (a layer whose compliance grows with T without
-                // bound): the reference stays at t_hist
+                // no finite stress at the predictor (a runaway heat history, e.g. a layer
+                // whose compliance grows with T without bound): the reference stays at t_hist
                 release_ref.set(None);
             }
         }
+        // A sliding bristle that heated in its previous move starts the solve at the
+        // predictor; this is valid where the root is unique (a bristle sliding at tau_c2(T),
+        // whose heat falls with T) and the release is not damped; otherwise (or when a trial
+        // state is not sliding) the full solve from t_hist. Plastic bristles are left to the
+        // full solve: an elastic state at t_hist can be the smallest root there.
         let sliding = |s: &BristleState| s.regime == bristle::Regime::Sliding;
         let predicted =
             if self.r.temperature && self_c > 0.0 && old.q > 0.0 && theta == 1.0 && sliding(&old) {
