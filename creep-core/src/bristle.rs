@@ -77,8 +77,9 @@ use std::cell::Cell;
 
 const TINY: f64 = 1e-300;
 
+/// |v|, in the unit of v.
 #[inline]
-fn norm(v: [f64; 2]) -> f64 {
+pub(crate) fn norm(v: [f64; 2]) -> f64 {
     (v[0] * v[0] + v[1] * v[1]).sqrt()
 }
 

@@ -19,12 +19,6 @@ pub(super) fn end_weighted_heat(qbar: f64, q1: f64, q0: f64) -> f64 {
     (qbar + QLIN * (q1.max(0.0) - q0.max(0.0))).max(0.0)
 }
 
-/// |tau|, Pa.
-#[inline]
-fn u_norm(tau: [f64; 2]) -> f64 {
-    (tau[0] * tau[0] + tau[1] * tau[1]).sqrt()
-}
-
 /// The state between two trial states `a` and `b` of a temperature solve, at weight `w`;
 /// only within one regime (no kink between the ends).
 fn lerp(a: &BristleState, b: &BristleState, w: f64) -> Option<BristleState> {
@@ -84,7 +78,7 @@ impl Contact {
             && old.regime == bristle::Regime::Plastic
             && self.r.rule == bristle::Rule::SameCharacteristic)
             .then(|| self.material(np, t_hist, u_abs, slip));
-        let riding = m_plastic.is_some_and(|m| u_norm(old.tau) < m.tc1);
+        let riding = m_plastic.is_some_and(|m| bristle::norm(old.tau) < m.tc1);
         let theta = self.release_weight(k, np, old.tau, riding);
         // flexibilities L + L_e and the elastic increment (Eq. 4.21) for the layer's L_e
         let flex = |le: f64| k.flex(le, [x, y]);
