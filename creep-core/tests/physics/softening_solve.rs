@@ -1,7 +1,7 @@
 //! The scalar temperature solve of a softening layer (engine/softening.rs) against the general solve: the same states within the solve's tolerance, steady and transient.
 
 use super::common::{preset, with_grid};
-use creep_core::{Contact, Inputs, Outputs};
+use creep_core::{Config, Contact, Inputs, Outputs};
 
 /// Forces and moment within `rel` of the larger magnitude (plus 1 N, 1 N m), the
 /// frictional power within `rel`, temperature rises within `rel` (plus 1 mK).
@@ -28,6 +28,25 @@ fn agree(what: &str, a: &Outputs, b: &Outputs, rel: f64) {
     }
 }
 
+/// Two contacts of `cfg`: (scalar solve, general solve). Asserts that the scalar solve
+/// applies to `cfg` (else the comparison would compare the general solve with itself).
+fn scalar_and_general(cfg: &Config, what: &str) -> (Contact, Contact) {
+    let fast = Contact::new(cfg).unwrap();
+    let mut general = Contact::new(cfg).unwrap();
+    assert!(
+        general.set_softening_solve(false),
+        "{what}: the scalar solve should apply"
+    );
+    (fast, general)
+}
+
+/// The steady states of both solves at `i` agree within 2e-4 ([`agree`]).
+fn steady_agree(fast: &mut Contact, general: &mut Contact, i: &Inputs, what: &str) {
+    let a = fast.steady(i).unwrap();
+    let b = general.steady(i).unwrap();
+    agree(what, &a, &b, 2e-4);
+}
+
 /// The softening-layer presets take the scalar solve, and the tolerance of both solves
 /// (1e-4 relative change of the softening factors) bounds their difference: steady curves
 /// with longitudinal, lateral and spin creepage at two speeds agree within 2e-4.
@@ -35,12 +54,7 @@ fn agree(what: &str, a: &Outputs, b: &Outputs, rel: f64) {
 fn scalar_solve_agrees_with_the_general_solve_in_steady_state() {
     for name in ["table4.1", "dry", "wet", "dry_sanded", "twin_disc"] {
         let cfg = with_grid(preset(name), 40, 11);
-        let mut fast = Contact::new(&cfg).unwrap();
-        let mut general = Contact::new(&cfg).unwrap();
-        assert!(
-            general.set_softening_solve(false),
-            "{name}: the scalar solve should apply to this preset"
-        );
+        let (mut fast, mut general) = scalar_and_general(&cfg, name);
         for v in [5.0, 30.0] {
             for (cx, cy, spin) in [
                 (0.0005, 0.0, 0.0),
@@ -59,9 +73,7 @@ fn scalar_solve_agrees_with_the_general_solve_in_steady_state() {
                     fn_n: 110e3,
                     ..Inputs::default()
                 };
-                let a = fast.steady(&i).unwrap();
-                let b = general.steady(&i).unwrap();
-                agree(&format!("{name} {i:?}"), &a, &b, 2e-4);
+                steady_agree(&mut fast, &mut general, &i, &format!("{name} {i:?}"));
             }
         }
     }
@@ -76,9 +88,7 @@ fn scalar_solve_agrees_with_the_general_solve_in_steady_state() {
 fn scalar_solve_agrees_with_the_general_solve_on_fine_grids() {
     for (name, v) in [("dry", 20.0), ("wet", 30.0)] {
         let cfg = with_grid(preset(name), 640, 21);
-        let mut fast = Contact::new(&cfg).unwrap();
-        let mut general = Contact::new(&cfg).unwrap();
-        assert!(general.set_softening_solve(false), "{name}");
+        let (mut fast, mut general) = scalar_and_general(&cfg, name);
         for cx in [0.005, 0.01, 0.05] {
             let i = Inputs {
                 cx,
@@ -86,9 +96,8 @@ fn scalar_solve_agrees_with_the_general_solve_on_fine_grids() {
                 fn_n: 110e3,
                 ..Inputs::default()
             };
-            let a = fast.steady(&i).unwrap();
-            let b = general.steady(&i).unwrap();
-            agree(&format!("{name} 640x21 {i:?}"), &a, &b, 2e-4);
+            let what = format!("{name} 640x21 {i:?}");
+            steady_agree(&mut fast, &mut general, &i, &what);
         }
     }
 }
@@ -176,9 +185,7 @@ fn scalar_solve_where_heating_closes_the_hardening_span() {
     ] {
         cfg.params.set_by_name(name, value).expect("parameter");
     }
-    let mut fast = Contact::new(&cfg).unwrap();
-    let mut general = Contact::new(&cfg).unwrap();
-    assert!(general.set_softening_solve(false));
+    let (mut fast, mut general) = scalar_and_general(&cfg, "this layer");
     for cx in [0.001, 0.005, 0.02, 0.1, 0.3] {
         for v in [5.0, 30.0] {
             let i = Inputs {
@@ -187,9 +194,7 @@ fn scalar_solve_where_heating_closes_the_hardening_span() {
                 fn_n: 110e3,
                 ..Inputs::default()
             };
-            let a = fast.steady(&i).unwrap();
-            let b = general.steady(&i).unwrap();
-            agree(&format!("cx {cx} v {v}"), &a, &b, 2e-4);
+            steady_agree(&mut fast, &mut general, &i, &format!("cx {cx} v {v}"));
         }
     }
 }
@@ -205,12 +210,10 @@ fn scalar_solve_with_formula_effects_of_the_operating_point() {
             "formula_effects": [{{"name": "f", "target": "tau_c2", "factor": "{factor}",
             "params": {{"k": {{"value": 0.3, "min": -1, "max": 1}}}}}}]}}"#
         );
-        creep_core::Config::from_json_str(&text, "test").expect("config")
+        Config::from_json_str(&text, "test").expect("config")
     };
     let cfg = config("1 - k * (humidity - 50) / 50");
-    let mut fast = Contact::new(&cfg).unwrap();
-    let mut general = Contact::new(&cfg).unwrap();
-    assert!(general.set_softening_solve(false));
+    let (mut fast, mut general) = scalar_and_general(&cfg, "this layer");
     for (h, cx) in [(20.0, 0.004), (50.0, 0.03), (80.0, 0.2)] {
         let cols = [("humidity".to_string(), h)];
         fast.set_extra(&cols).unwrap();
@@ -221,9 +224,8 @@ fn scalar_solve_with_formula_effects_of_the_operating_point() {
             fn_n: 110e3,
             ..Inputs::default()
         };
-        let a = fast.steady(&i).unwrap();
-        let b = general.steady(&i).unwrap();
-        agree(&format!("humidity {h} cx {cx}"), &a, &b, 2e-4);
+        let what = format!("humidity {h} cx {cx}");
+        steady_agree(&mut fast, &mut general, &i, &what);
     }
     let local = config("1 - k * (T_C - 20) / 500");
     assert!(!Contact::new(&local).unwrap().set_softening_solve(false));
