@@ -82,6 +82,8 @@ pub fn table(quick: bool) {
     } else {
         &[5.0, 10.0, 20.0, 30.0]
     };
+    // the reference curves, computed once for both tables
+    let mut refs = Vec::new();
     for p in presets {
         for &v in speeds {
             let f_ref = curve(p, v, *reference, &cx);
@@ -102,6 +104,7 @@ pub fn table(quick: bool) {
                 cells += &format!("{worst:>7.2}");
             }
             println!("  {p:>9} {v:>4}  {cells}  {:.3} %", where80 * 100.0);
+            refs.push(f_ref);
         }
     }
     // the same reference, coarse grids under the higher-order rules (issue 24 step 10: a
@@ -115,16 +118,17 @@ pub fn table(quick: bool) {
         .map(|(x, y)| format!("{:>7}", format!("{x}x{y}")))
         .collect();
     println!("  {:>9} {:>4}  {head}", "preset", "m/s");
+    let mut refs = refs.iter();
     for p in presets {
         for &v in speeds {
-            let f_ref = curve(p, v, *reference, &cx);
+            let f_ref = refs.next().expect("one reference per preset and speed");
             let cells: String = HO_GRIDS
                 .iter()
                 .map(|&g| {
                     let f = curve_in(p, v, g, Scheme::CellsHigher, &cx);
                     let worst = f
                         .iter()
-                        .zip(&f_ref)
+                        .zip(f_ref)
                         .map(|(a, r)| (a / r - 1.0).abs() * 100.0)
                         .fold(0.0f64, f64::max);
                     format!("{worst:>7.2}")
