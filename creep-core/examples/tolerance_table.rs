@@ -56,7 +56,7 @@ fn main() {
                         if c.met { "" } else { "**not met**: " },
                         c.nx,
                         c.ny,
-                        tolerance::scheme_name(c.scheme),
+                        c.scheme.name(),
                         c.fx_err_pct,
                         cost(c.cost)
                     )),

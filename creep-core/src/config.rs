@@ -2,7 +2,8 @@
 //!
 //! A configuration file is `{"model": "ecf"|"fastsim"|"polach", "preset": NAME, "effects":
 //! [...], "params": {NAME: VALUE, ...}, "bound": "elliptic"|"parabolic", "grid": {"nx": N,
-//! "ny": N}, "geometry": {...}}`. Everything but `model` is optional. A preset is such a file
+//! "ny": N}, "scheme": "cells"|"cells-ho"|"continuous", "geometry": {...}}`. Everything but
+//! `model` is optional. A preset is such a file
 //! shipped with the crate (`presets/*.json`); a user file naming a preset starts from it and
 //! overrides what it gives. `effects` replaces the preset's list, unless every entry starts
 //! with `+` or `-`, which adds or removes effects. Parameter values are numbers in the unit
@@ -158,6 +159,12 @@ pub struct Config {
     pub bound: Bound,
     /// Bristle grid.
     pub grid: Grid,
+    /// How a model built from this configuration integrates the bristles' moves, in steady
+    /// marches and time steps (configuration key `scheme`: `cells`, `cells-ho` or
+    /// `continuous`; default `cells`; [`crate::engine::Scheme`]). How to compute, not what:
+    /// [`Model::set_scheme`](crate::Model::set_scheme) changes it for a model, and a saved
+    /// state loads into a model of another scheme.
+    pub scheme: crate::engine::Scheme,
     /// Contact geometry.
     pub geometry: Geometry,
     /// Modifiers of the material law (module [`crate::modifier`]): formula effects
@@ -184,6 +191,8 @@ struct RawConfig {
     bound: Option<String>,
     #[serde(default)]
     grid: Option<Grid>,
+    #[serde(default)]
+    scheme: Option<String>,
     #[serde(default)]
     geometry: Option<Map<String, Value>>,
     #[serde(default)]
@@ -522,6 +531,17 @@ impl Config {
             g.validate().map_err(|e| cfg_err(src, e.to_string()))?;
             cfg.grid = g;
         }
+        if let Some(name) = &raw.scheme {
+            cfg.scheme = crate::engine::Scheme::by_name(name).ok_or_else(|| {
+                cfg_err(
+                    src,
+                    format!(
+                        "scheme: '{name}' is not a scheme (expected {})",
+                        crate::engine::Scheme::NAMES
+                    ),
+                )
+            })?;
+        }
         if let Some(g) = &raw.geometry {
             cfg.geometry = parse_geometry(src, g)?;
         }
@@ -565,6 +585,7 @@ impl Config {
                     params: Params::default(),
                     bound: Bound::Elliptic,
                     grid: DEFAULT_GRID,
+                    scheme: crate::engine::Scheme::CellsMarch,
                     geometry: DEFAULT_GEOMETRY,
                     modifiers: Vec::new(),
                 }
@@ -791,6 +812,7 @@ impl Config {
             "params": ps,
             "bound": match self.bound { Bound::Elliptic => "elliptic", Bound::Parabolic => "parabolic" },
             "grid": self.grid,
+            "scheme": self.scheme.name(),
             "geometry": geometry,
         });
         if self.preset != "custom" {
@@ -863,6 +885,28 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("heat") && e.contains("temperature"), "{e}");
+    }
+
+    #[test]
+    fn a_configuration_names_its_scheme() {
+        use crate::engine::Scheme;
+        let c = Config::preset("dry").unwrap();
+        assert_eq!(c.scheme, Scheme::CellsMarch);
+        assert_eq!(c.to_json()["scheme"], "cells");
+        for s in [Scheme::CellsMarch, Scheme::CellsHigher, Scheme::Continuous] {
+            let json = format!(r#"{{"preset": "dry", "scheme": "{}"}}"#, s.name());
+            let c = Config::from_json_str(&json, "x").unwrap();
+            assert_eq!(c.scheme, s);
+            let back = Config::from_json_str(&c.to_json().to_string(), "roundtrip").unwrap();
+            assert_eq!(back, c);
+        }
+        let e = Config::from_json_str(r#"{"preset": "dry", "scheme": "ho"}"#, "x.json")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("x.json") && e.contains("scheme: 'ho'") && e.contains("cells-ho"),
+            "{e}"
+        );
     }
 
     #[test]

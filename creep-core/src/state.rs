@@ -155,7 +155,8 @@ fn get_outputs(r: &mut R, version: u32) -> Result<Outputs> {
 }
 
 /// True if the configuration `saved` (JSON text of a state) is `now`'s: equal as text, or
-/// saved before some parameters existed, which hold their defaults in `now`. A parameter of
+/// equal but for the `scheme`, or saved before some parameters (or the scheme) existed, which
+/// hold their defaults in `now`. A parameter of
 /// `saved` that this build does not know is refused with its name.
 fn same_config(saved: &str, now: &str) -> Result<bool> {
     // compared as text: serde_json's default number parser may differ from the printed
@@ -163,12 +164,19 @@ fn same_config(saved: &str, now: &str) -> Result<bool> {
     if saved == now {
         return Ok(true);
     }
-    let (Ok(mut a), Ok(b)) = (
+    let (Ok(mut a), Ok(mut b)) = (
         serde_json::from_str::<Value>(saved),
         serde_json::from_str::<Value>(now),
     ) else {
         return Ok(false);
     };
+    // the scheme says how to compute, not what: a state loads into a model of another scheme
+    // (and states saved before the configuration had one have none)
+    for c in [&mut a, &mut b] {
+        if let Some(o) = c.as_object_mut() {
+            o.remove("scheme");
+        }
+    }
     let Some(ps) = a.get_mut("params").and_then(Value::as_object_mut) else {
         return Ok(false);
     };
@@ -506,6 +514,49 @@ mod tests {
             assert!(e.contains(&format!("{what} '{first}' twice")), "{e}");
         }
         assert!(Model::new(&cfg).unwrap().load_state(&bytes).is_ok());
+    }
+
+    #[test]
+    fn a_model_runs_its_configurations_scheme_and_its_state_loads_under_another() {
+        use crate::engine::Scheme;
+        let cells = Config::preset("dry").unwrap();
+        let ho = Config::from_json_str(
+            r#"{"preset": "dry", "scheme": "cells-ho", "grid": {"nx": 20, "ny": 5}}"#,
+            "x",
+        )
+        .unwrap();
+        let mut small = cells.clone();
+        small.grid = ho.grid;
+        let at = Inputs {
+            cx: 0.01,
+            v: 20.0,
+            fn_n: 110e3,
+            ..Inputs::default()
+        };
+        let fx = |c: &Config, set: Option<Scheme>| {
+            let mut m = Model::new(c).unwrap();
+            if let Some(s) = set {
+                m.set_scheme(s);
+            }
+            (m.steady(&at).unwrap().fx, m)
+        };
+        // the configuration's scheme is the one set on a model built cell by cell
+        let (f_ho, m_ho) = fx(&ho, None);
+        let (f_set, _) = fx(&small, Some(Scheme::CellsHigher));
+        let (f_cells, mut m_cells) = fx(&small, None);
+        assert_eq!(f_ho.to_bits(), f_set.to_bits());
+        assert!((f_ho / f_cells - 1.0).abs() > 1e-4, "{f_ho} {f_cells}");
+        // a model set back to cells computes what a cells configuration does
+        let (f_back, _) = fx(&ho, Some(Scheme::CellsMarch));
+        assert_eq!(f_back.to_bits(), f_cells.to_bits());
+        // the scheme says how to compute, not what: the state loads into a cells model
+        m_cells.load_state(&m_ho.save_state()).unwrap();
+        assert_eq!(m_cells.outputs().fx.to_bits(), f_ho.to_bits());
+        // but not into a model of another grid
+        assert!(Model::new(&cells)
+            .unwrap()
+            .load_state(&m_ho.save_state())
+            .is_err());
     }
 
     #[test]

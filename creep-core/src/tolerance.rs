@@ -72,15 +72,6 @@ pub struct Row {
     pub limit_unc_pct: f64,
 }
 
-/// The scheme's name in the table and on the command line.
-pub fn scheme_name(s: Scheme) -> &'static str {
-    match s {
-        Scheme::Continuous => "continuous",
-        Scheme::CellsMarch | Scheme::Cells => "cells",
-        Scheme::CellsHigher => "cells-ho",
-    }
-}
-
 /// Parses an accuracy table (the format of [`TABLE_CSV`]); `name` appears in errors.
 pub fn parse(text: &str, name: &str) -> Result<Vec<Row>> {
     let err = |line: usize, m: String| CreepError::Config {
@@ -144,14 +135,12 @@ pub fn parse(text: &str, name: &str) -> Result<Vec<Row>> {
                 )
             })
         };
-        let scheme = match f[idx[6]] {
-            "cells" => Scheme::CellsMarch,
-            "continuous" => Scheme::Continuous,
-            "cells-ho" => Scheme::CellsHigher,
-            s => {
+        let scheme = match Scheme::by_name(f[idx[6]]) {
+            Some(s) => s,
+            None => {
                 return Err(err(
                     ln,
-                    format!("scheme '{s}' (cells, continuous or cells-ho)"),
+                    format!("scheme '{}' ({})", f[idx[6]], Scheme::NAMES),
                 ))
             }
         };
@@ -219,7 +208,7 @@ impl Filter {
     fn allows(&self, nx: usize, ny: usize, s: Scheme) -> bool {
         self.nx.is_none_or(|n| n == nx)
             && self.ny.is_none_or(|n| n == ny)
-            && self.scheme.is_none_or(|f| scheme_name(f) == scheme_name(s))
+            && self.scheme.is_none_or(|f| f.name() == s.name())
             && !(self.steady && s == Scheme::Continuous)
     }
 }
@@ -265,7 +254,7 @@ impl Choice {
             "grid {}x{}, scheme {}: tabulated largest F_x error {:.2} % (worst of {}, steps and 50 Hz sine at {} m/s, {} ms steps; T_max rise {:.2} %; reference limit uncertain by up to {:.2} %), cost {:.2}x real time on one core",
             self.nx,
             self.ny,
-            scheme_name(self.scheme),
+            self.scheme.name(),
             self.fx_err_pct,
             self.scope,
             self.v_tab,
@@ -390,7 +379,7 @@ pub fn choose_in(
     let mut keys: Vec<(usize, usize, &'static str)> = at
         .iter()
         .filter(|r| filter.allows(r.nx, r.ny, r.scheme))
-        .map(|r| (r.nx, r.ny, scheme_name(r.scheme)))
+        .map(|r| (r.nx, r.ny, r.scheme.name()))
         .collect();
     keys.sort();
     keys.dedup();
@@ -399,7 +388,7 @@ pub fn choose_in(
     for (nx, ny, sn) in keys {
         let mine: Vec<&&Row> = at
             .iter()
-            .filter(|r| r.nx == nx && r.ny == ny && scheme_name(r.scheme) == sn)
+            .filter(|r| r.nx == nx && r.ny == ny && r.scheme.name() == sn)
             .collect();
         let mut covered: Vec<_> = mine.iter().map(|r| case_of(r)).collect();
         covered.sort();
@@ -472,7 +461,7 @@ fn describe(f: Filter) -> String {
         v.push(format!("ny = {n}"));
     }
     if let Some(s) = f.scheme {
-        v.push(format!("scheme {}", scheme_name(s)));
+        v.push(format!("scheme {}", s.name()));
     }
     if v.is_empty() {
         "settings".into()
@@ -507,8 +496,8 @@ pub fn scope_of(cfg: &crate::Config) -> Option<&'static str> {
 pub fn tabulated() -> Result<Vec<(usize, usize, Scheme)>> {
     let mut v: Vec<(usize, usize, Scheme)> =
         table()?.iter().map(|r| (r.nx, r.ny, r.scheme)).collect();
-    v.sort_by_key(|k| (k.0 * k.1, k.0, scheme_name(k.2)));
-    v.dedup_by_key(|k| (k.0, k.1, scheme_name(k.2)));
+    v.sort_by_key(|k| (k.0 * k.1, k.0, k.2.name()));
+    v.dedup_by_key(|k| (k.0, k.1, k.2.name()));
     Ok(v)
 }
 
@@ -538,7 +527,7 @@ mod tests {
     fn brute(rows: &[Row], v_tab: f64) -> Vec<(usize, usize, &'static str, f64, f64)> {
         let mut out: Vec<(usize, usize, &'static str, f64, f64)> = Vec::new();
         for r in rows.iter().filter(|r| r.v == v_tab) {
-            let k = (r.nx, r.ny, scheme_name(r.scheme));
+            let k = (r.nx, r.ny, r.scheme.name());
             match out.iter_mut().find(|o| (o.0, o.1, o.2) == k) {
                 Some(o) => {
                     o.3 = o.3.max(r.fx_max_pct);
@@ -569,7 +558,7 @@ mod tests {
                 assert_eq!(c.v_tab, s);
                 let mine = all
                     .iter()
-                    .find(|o| (o.0, o.1, o.2) == (c.nx, c.ny, scheme_name(c.scheme)))
+                    .find(|o| (o.0, o.1, o.2) == (c.nx, c.ny, c.scheme.name()))
                     .expect("the choice is a tabulated row");
                 assert_eq!(c.fx_err_pct, mine.3, "error of the chosen row");
                 if c.met {

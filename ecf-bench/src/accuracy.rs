@@ -29,7 +29,6 @@
 //! compile time: regenerate it with `bash scripts/bench.sh --only accuracy`, never by hand.
 //! `ECF_ACCURACY_CSV=path` writes it elsewhere instead (with `--quick` too).
 use creep_core::engine::Scheme;
-use creep_core::tolerance::scheme_name;
 use creep_core::{Config, Contact, Grid, Inputs};
 use std::time::Instant;
 
@@ -313,7 +312,7 @@ pub fn table(quick: bool, finest: usize) {
                 println!(
                     "   {:>8} {:>10} {:>26} {:>26} {:>26} {:>10.2}",
                     format!("{nx}x{ny}"),
-                    scheme_name(scheme),
+                    scheme.name(),
                     f(e[0]),
                     f(e[1]),
                     f(e[2]),
@@ -363,7 +362,7 @@ fn csv_row(
         case.kind_name(),
         case.v,
         case.dt * 1e3,
-        scheme_name(scheme)
+        scheme.name()
     );
     for t in e {
         s.push_str(&format!(",{:.3},{:.3},{:.3}", t.0, t.1, t.2));

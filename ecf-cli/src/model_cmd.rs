@@ -36,7 +36,8 @@ impl SchemeArg {
 pub(crate) struct TransientArgs {
     /// How a time step advances the bristles: cells (reference), continuous (faster) or
     /// cells-ho (higher-order rules along each move; see docs/model.md sections 3 and 9).
-    /// Default: cells, or the scheme --tol chooses
+    /// Default: the scheme --tol chooses, else the configuration's (cells unless --config
+    /// names another)
     #[arg(long, value_enum)]
     scheme: Option<SchemeArg>,
 }
@@ -47,9 +48,12 @@ impl TransientArgs {
         self.scheme.map(SchemeArg::scheme)
     }
 
-    /// Sets the scheme: the explicit one, else the one --tol chose, else cells.
+    /// Sets the scheme: the explicit one, else the one --tol chose; else the configuration's
+    /// stays.
     fn apply(&self, model: &mut Model, chosen: Option<Scheme>) {
-        model.set_scheme(self.explicit().or(chosen).unwrap_or(Scheme::CellsMarch));
+        if let Some(s) = self.explicit().or(chosen) {
+            model.set_scheme(s);
+        }
     }
 }
 
@@ -66,9 +70,9 @@ enum SteadySchemeArg {
 
 #[derive(Args, Clone)]
 pub(crate) struct SteadyArgs {
-    /// How the steady march integrates a move: cells (default) or cells-ho (higher-order
-    /// rules along each move; docs/model.md sections 3 and 9). Default: cells, or the scheme
-    /// --tol chooses among these two
+    /// How the steady march integrates a move: cells or cells-ho (higher-order rules along
+    /// each move; docs/model.md sections 3 and 9). Default: the scheme --tol chooses among
+    /// these two, else the configuration's (cells unless --config names another)
     #[arg(long, value_enum)]
     scheme: Option<SteadySchemeArg>,
 }
@@ -85,8 +89,8 @@ impl SteadyArgs {
         })
     }
 
-    /// Sets the scheme: the explicit one, else the one --tol chose; else the model's default
-    /// (cells) stays.
+    /// Sets the scheme: the explicit one, else the one --tol chose; else the configuration's
+    /// stays.
     fn apply(&self, model: &mut Model, chosen: Option<Scheme>) {
         if let Some(s) = self.explicit().or(chosen) {
             model.set_scheme(s);
@@ -661,7 +665,7 @@ impl ModelArgs {
                     "note: --tol {tol}: the accuracy table has no row with the explicit --grid {}x{}{}: its error is not measured; running with the explicit settings",
                     cfg.grid.nx,
                     cfg.grid.ny,
-                    explicit_scheme.map_or(String::new(), |s| format!(" and --scheme {}", tolerance::scheme_name(s)))
+                    explicit_scheme.map_or(String::new(), |s| format!(" and --scheme {}", s.name()))
                 );
                 Ok(explicit_scheme)
             }

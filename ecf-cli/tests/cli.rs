@@ -752,3 +752,50 @@ fn a_run_of_too_many_steps_is_refused() {
     assert_ne!(code, 0);
     assert!(err.contains("--cycles/--steps-per-cycle"), "{err}");
 }
+
+/// A configuration file's `scheme` is the one `curve` and `step` run (the output of the
+/// explicit --scheme), and --scheme overrides it.
+#[test]
+fn a_configuration_files_scheme_runs_unless_scheme_is_given() {
+    let dir = std::env::temp_dir().join(format!("ecf-cli-scheme-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("ho.json");
+    std::fs::write(
+        &file,
+        r#"{"preset": "dry", "grid": {"nx": 20, "ny": 5}, "scheme": "cells-ho"}"#,
+    )
+    .unwrap();
+    let run = |cmd: &[&str], source: &[&str], scheme: Option<&str>| {
+        let mut a: Vec<&str> = cmd.to_vec();
+        a.extend_from_slice(source);
+        if let Some(s) = scheme {
+            a.extend_from_slice(&["--scheme", s]);
+        }
+        let (code, out, err) = ecf(&a);
+        assert_eq!(code, 0, "{a:?}: {err}");
+        out
+    };
+    let f = file.to_str().unwrap();
+    let preset = ["--preset", "dry", "--grid", "20x5"];
+    for cmd in [
+        &["curve", "--cx", "0.002,0.01,0.05"][..],
+        &[
+            "step",
+            "--cx-from",
+            "0.002",
+            "--cx-to",
+            "0.01",
+            "--duration-ms",
+            "3",
+            "--dt-ms",
+            "0.25",
+        ][..],
+    ] {
+        let from_file = run(cmd, &["--config", f], None);
+        assert_eq!(from_file, run(cmd, &preset, Some("cells-ho")), "{cmd:?}");
+        let cells = run(cmd, &preset, None);
+        assert_ne!(from_file, cells, "{cmd:?}");
+        assert_eq!(run(cmd, &["--config", f], Some("cells")), cells, "{cmd:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

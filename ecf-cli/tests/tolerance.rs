@@ -42,7 +42,7 @@ fn tol_runs_on_the_grid_and_scheme_the_table_gives_and_says_which() {
         let (code, out, err) = step(&["--tol", &t]);
         assert_eq!(code, 0, "{err}");
         let grid = format!("{}x{}", c.nx, c.ny);
-        let scheme = tolerance::scheme_name(c.scheme);
+        let scheme = c.scheme.name();
         assert!(
             err.contains(&format!("grid {grid}, scheme {scheme}"))
                 && err.contains(&format!("{:.2} %", c.fx_err_pct)),
@@ -75,12 +75,7 @@ fn explicit_grid_and_scheme_override_tol() {
         },
     )
     .expect("80x7 is tabulated");
-    let (_, explicit, _) = step(&[
-        "--grid",
-        "80x7",
-        "--scheme",
-        tolerance::scheme_name(on80.scheme),
-    ]);
+    let (_, explicit, _) = step(&["--grid", "80x7", "--scheme", on80.scheme.name()]);
     assert_eq!(out, explicit);
     assert_ne!(out, chosen, "--grid 80x7 was not used");
     assert!(err.contains("grid 80x7"), "{err}");
@@ -125,7 +120,7 @@ fn a_tolerance_no_grid_meets_is_a_warning_with_the_error_reached() {
                 "grid {}x{}, scheme {}",
                 c.nx,
                 c.ny,
-                tolerance::scheme_name(c.scheme)
+                c.scheme.name()
             )),
         "{err}"
     );

@@ -207,9 +207,10 @@ pub struct Settings {
     pub ny: Option<usize>,
     /// Threads that advance the strips (0 or 1: the calling thread).
     pub threads: usize,
-    /// How a step advances the bristles: 0 cell by cell, 1 continuous, 2 cell by cell with
-    /// the higher-order rules ([`scheme_code`]).
-    pub scheme: i32,
+    /// How a step advances the bristles, if set: 0 cell by cell, 1 continuous, 2 cell by
+    /// cell with the higher-order rules ([`scheme_code`]). None (the start value 0): the
+    /// configuration's `scheme` (cells unless the configuration file names another).
+    pub scheme: Option<i32>,
     /// Relative tolerance on F_x that chooses the grid and scheme at initialization
     /// (fraction; 0 = off), if set to a value other than its start value
     /// [`DEFAULT_REL_TOL`]; see [`Settings::rel_tol`].
@@ -411,7 +412,9 @@ impl Settings {
             (Slot::Nx, Value::Integer(x)) => self.nx = (*x > 0).then_some(*x as usize),
             (Slot::Ny, Value::Integer(x)) => self.ny = (*x > 0).then_some(*x as usize),
             (Slot::Threads, Value::Integer(x)) => self.threads = (*x).max(1) as usize,
-            (Slot::Scheme, Value::Integer(x)) => self.scheme = *x,
+            (Slot::Scheme, Value::Integer(x)) => {
+                self.scheme = (v.start != Start::Integer(*x)).then_some(*x)
+            }
             (Slot::RelTol, Value::Real(x)) => self.rel_tol = (*x != DEFAULT_REL_TOL).then_some(*x),
             (Slot::Effect(e), Value::Boolean(x)) => {
                 if v.start == Start::Boolean(*x) {
@@ -456,7 +459,13 @@ impl Settings {
             }),
             Slot::GeometryMode => Value::Integer(self.geometry),
             Slot::Threads => Value::Integer(self.threads.max(1) as i32),
-            Slot::Scheme => Value::Integer(self.scheme),
+            Slot::Scheme => Value::Integer(match self.scheme {
+                Some(x) => x,
+                None => match cfg() {
+                    Ok(c) => scheme_code(c.scheme),
+                    Err(e) => return Some(Err(e)),
+                },
+            }),
             Slot::RelTol => Value::Real(self.rel_tol_value()),
             Slot::Nx | Slot::Ny => match cfg() {
                 Ok(c) => Value::Integer(if v.slot == Slot::Nx {
@@ -488,9 +497,10 @@ impl Settings {
         }))
     }
 
-    /// The engine's scheme of the parameter `scheme` ([`scheme_code`]).
-    pub fn scheme(&self) -> Scheme {
-        scheme_of_code(self.scheme)
+    /// The engine's scheme of the parameter `scheme` ([`scheme_code`]), if set (None: the
+    /// configuration's).
+    pub fn scheme(&self) -> Option<Scheme> {
+        self.scheme.map(scheme_of_code)
     }
 
     /// The preset's or configuration file's configuration, and whether the file gives a
@@ -562,7 +572,10 @@ impl Settings {
             preset: creep_core::tolerance::scope_of(cfg),
             nx: self.nx,
             ny: self.ny,
-            scheme: (self.scheme != 0).then(|| self.scheme()),
+            // the parameter's scheme, else a configuration file's other than cells
+            scheme: self
+                .scheme()
+                .or(Some(cfg.scheme).filter(|s| *s != Scheme::CellsMarch)),
             steady: false,
         };
         match creep_core::tolerance::choose(rel_tol, v, None, filter) {

@@ -1,18 +1,20 @@
 //! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
 //!
-//! Layout (version 6): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
+//! Layout (version 7): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
 //! name as in modelDescription.xml, f64 value), settings (model, model_set, preset,
 //! config_file, columns, set parameters as u32 count and (name, f64) each, set effects as
 //! u32 count and (name, u8) each, nx, ny as u32 (0 = not set), i32 geometry, u32 count + per geometry
 //! parameter (name, u8 present, f64)), u8 + configuration (u8 model, u32 count + names of the
 //! effects on, u32 count + (name, f64) per parameter, u8 bound, u32 nx, u32 ny, u8 geometry
 //! kind + 3 × f64, preset name, u8 + (if formula or Rust effects) the configuration as JSON
-//! and, per formula then Rust effect, u32 count + f64 parameter values), u8 + u32 length +
+//! and, per formula then Rust effect, u32 count + f64 parameter values, u8 the
+//! configuration's scheme as the code of the parameter `scheme`), u8 + u32 length +
 //! the bytes of `creep_core::Model::save_state` (the whole bristle grid and heat histories),
 //! and u8 the mode the state was taken in (0 Instantiated, 1 InitializationMode,
 //! 2 StepComplete, 3 Terminated), which fmi2SetFMUstate restores, and u8 the scheme
 //! `rel_tol` chose for the model (the code of the parameter `scheme`, 255: none chose one).
-//! Version 5 had no scheme byte (none chose one).
+//! Version 6 had no scheme byte in the configuration (cells); version 5 had no scheme byte
+//! at the end either (none chose one).
 //! Inputs, parameters, effects and geometry values are stored by name (those of creep-core's
 //! tables), so that a build with another input, parameter or effect reads the state: a value
 //! it lacks keeps its default (an effect: off in the configuration, not set in the settings);
@@ -36,7 +38,7 @@ use creep_core::{AnyModifier, Bound, Config, Geometry, Grid, Model, ModelKind, M
 /// Magic bytes at the start of a serialized FMU state.
 pub const MAGIC: &[u8; 8] = b"ECFFMUST";
 /// Format version written by this build.
-pub const VERSION: u32 = 6;
+pub const VERSION: u32 = 7;
 
 /// The inputs of format version 2, in its fixed order (version 3 stores each with its name).
 const V2_INPUTS: [&str; 10] = [
@@ -137,6 +139,7 @@ fn put_config(w: &mut W, c: &Config) {
             }
         }
     }
+    w.u8(crate::settings::scheme_code(c.scheme) as u8);
 }
 
 fn get_config(r: &mut R, version: u32) -> Result<Config, String> {
@@ -201,6 +204,14 @@ fn get_config(r: &mut R, version: u32) -> Result<Config, String> {
             }
         }
     }
+    let scheme = if version >= 7 {
+        match r.u8()? {
+            c @ 0..=2 => crate::settings::scheme_of_code(c as i32),
+            c => return Err(format!("bad configuration scheme code {c}")),
+        }
+    } else {
+        creep_core::engine::Scheme::CellsMarch
+    };
     Ok(Config {
         model,
         preset,
@@ -208,6 +219,7 @@ fn get_config(r: &mut R, version: u32) -> Result<Config, String> {
         params: p,
         bound,
         grid,
+        scheme,
         geometry,
         modifiers,
     })

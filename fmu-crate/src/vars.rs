@@ -546,6 +546,7 @@ pub fn default_config() -> Config {
         params: creep_core::params::Params::default(),
         bound: creep_core::Bound::Elliptic,
         grid: creep_core::config::DEFAULT_GRID,
+        scheme: creep_core::engine::Scheme::CellsMarch,
         geometry: DEFAULT_GEOMETRY,
         modifiers: Vec::new(),
     })
@@ -635,7 +636,7 @@ pub fn table() -> Vec<Var> {
         kind: Kind::Integer,
         causality: Parameter,
         unit: None,
-        description: "how a step advances the bristles: 0 cell by cell (reference, independent of the communication step within 0.5 %), 1 continuous sub-steps of up to 8 cells, one-cell pieces at the trailing edge and at the end of each step (2-4x faster at 0.1-1 ms steps on 80 x 21; its step dependence up to about 1 %, forces within 1.5 % of 0 under inputs that jump at every step), 2 cell by cell with higher-order rules along each move (about 2x the cost of 0 on the same grid, 2-4x smaller errors; ECF's same-characteristic layer only, others run 0; docs/fmu.md)".into(),
+        description: "how a step advances the bristles (the start value 0 means 'not set': a configuration file's `scheme` applies, else cell by cell): 0 cell by cell (reference, independent of the communication step within 0.5 %), 1 continuous sub-steps of up to 8 cells, one-cell pieces at the trailing edge and at the end of each step (2-4x faster at 0.1-1 ms steps on 80 x 21; its step dependence up to about 1 %, forces within 1.5 % of 0 under inputs that jump at every step), 2 cell by cell with higher-order rules along each move (about 2x the cost of 0 on the same grid, 2-4x smaller errors; ECF's same-characteristic layer only, others run 0; docs/fmu.md)".into(),
         start: Start::Integer(0),
         min: Some(0.0),
         max: Some(2.0),

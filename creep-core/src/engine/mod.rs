@@ -79,6 +79,31 @@ pub enum Scheme {
     CellsHigher,
 }
 
+impl Scheme {
+    /// The names a configuration file and the command line give the schemes.
+    pub const NAMES: &'static str = "cells, cells-ho or continuous";
+
+    /// The scheme's name in a configuration file, the accuracy table and on the command
+    /// line (`cells` is [`Scheme::CellsMarch`]; the reference [`Scheme::Cells`] too).
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Continuous => "continuous",
+            Scheme::CellsMarch | Scheme::Cells => "cells",
+            Scheme::CellsHigher => "cells-ho",
+        }
+    }
+
+    /// The scheme of a name ([`Scheme::name`]), None for any other text.
+    pub fn by_name(name: &str) -> Option<Scheme> {
+        match name {
+            "cells" => Some(Scheme::CellsMarch),
+            "continuous" => Some(Scheme::Continuous),
+            "cells-ho" => Some(Scheme::CellsHigher),
+            _ => None,
+        }
+    }
+}
+
 /// Normal forces at or below this (N) are lift-off: the contact carries nothing. (The
 /// contact length shrinks like F_N^(1/3); a vanishing contact is not a tiny one.)
 pub const F_LIFT_OFF: f64 = 1e-3;
@@ -303,7 +328,7 @@ impl Contact {
             out: Outputs::default(),
             initialized: false,
             warnings: Vec::new(),
-            scheme: Scheme::CellsMarch,
+            scheme: cfg.scheme,
             ho: false,
             start_cache: true,
             reversed: false,
@@ -325,6 +350,8 @@ impl Contact {
         for path in FastPath::ALL {
             c.set_fast_path(path, true);
         }
+        // the configuration's scheme, with the higher-order rules where they apply
+        c.set_scheme(cfg.scheme);
         Ok(c)
     }
 
@@ -725,7 +752,9 @@ impl Contact {
         }
     }
 
-    /// Chooses how a step advances the bristles (default [`Scheme::CellsMarch`]).
+    /// Chooses how a step advances the bristles (at construction: the configuration's
+    /// `scheme`, default [`Scheme::CellsMarch`]); the configuration keeps the scheme it was
+    /// built with.
     pub fn set_scheme(&mut self, scheme: Scheme) {
         self.scheme = scheme;
         self.ho = scheme == Scheme::CellsHigher

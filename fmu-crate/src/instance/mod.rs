@@ -635,7 +635,7 @@ impl Instance {
         let (n, scheme) = (self.settings.threads.max(1), self.scheme());
         match self.model.as_mut() {
             Some(m) => {
-                m.set_scheme(scheme);
+                m.set_scheme(scheme.unwrap_or(m.config().scheme));
                 m.set_threads(n).map_err(|e| e.to_string())
             }
             None => Ok(()),
@@ -663,7 +663,9 @@ impl Instance {
         let live = matches!(s.phase, Phase::StepComplete | Phase::Terminated);
         let mut model = if live { s.model.clone() } else { None };
         if let Some(m) = model.as_mut() {
-            m.set_scheme(s.tol_scheme.unwrap_or_else(|| self.settings.scheme()));
+            // else the configuration's (that of the state)
+            let scheme = s.tol_scheme.or(self.settings.scheme());
+            m.set_scheme(scheme.unwrap_or(m.config().scheme));
             if let Err(e) = m.set_threads(threads.max(1)) {
                 return self.error(format!("{F}: {e}; the instance is unchanged"));
             }

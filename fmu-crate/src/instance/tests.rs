@@ -469,3 +469,62 @@ fn a_configuration_file_with_a_grid_turns_the_default_rel_tol_off() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A configuration file's `scheme` is the one the model runs while the parameter `scheme` is
+/// at its start value (which then reads back the file's), and travels with a serialized state
+/// into a fresh instance; a parameter set to another scheme overrides it.
+#[test]
+fn a_configuration_files_scheme_runs_unless_the_parameter_sets_another() {
+    let dir = std::env::temp_dir().join(format!("ecf-file-scheme-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let (ho, plain) = (dir.join("ho.json"), dir.join("plain.json"));
+    let grid = r#""preset": "dry", "grid": {"nx": 20, "ny": 5}"#;
+    std::fs::write(&ho, format!(r#"{{{grid}, "scheme": "cells-ho"}}"#)).expect("w");
+    std::fs::write(&plain, format!("{{{grid}}}")).expect("w");
+    let run = |file: &std::path::Path, scheme: Option<i32>| {
+        let mut i = Instance::new("t", None, false);
+        assert_eq!(
+            i.set_string(vr("config_file"), file.to_str().unwrap()),
+            Status::Ok
+        );
+        if let Some(s) = scheme {
+            assert_eq!(i.set_integer(vr("scheme"), s), Status::Ok);
+        }
+        assert_eq!(i.set_real(vr("v"), 20.0), Status::Ok);
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok, "{:?}", i.take_logs());
+        let code = i.get_integer(vr("scheme"));
+        let mut fx = Vec::new();
+        let mut saved = None;
+        for k in 0..10 {
+            assert_eq!(i.set_real(vr("cx"), 0.002 + 0.004 * k as f64), Status::Ok);
+            assert_eq!(i.do_step(k as f64 * 1e-4, 1e-4), Status::Ok);
+            fx.push(i.get_real(vr("Fx")).expect("Fx"));
+            if k == 4 {
+                saved = Some(crate::state::serialize(&i.get_state()));
+            }
+        }
+        (code, fx, saved.expect("state"))
+    };
+    let (code, from_file, bytes) = run(&ho, None);
+    assert_eq!(code, Ok(2));
+    let (code, set, _) = run(&plain, Some(2));
+    assert_eq!((code, &set), (Ok(2), &from_file));
+    let (code, cells, _) = run(&plain, None);
+    assert_eq!(code, Ok(0));
+    assert_ne!(cells, from_file);
+    let (code, continuous, _) = run(&ho, Some(1));
+    assert_eq!(code, Ok(1));
+    assert_ne!(continuous, from_file);
+    // a fresh instance, no file: the deserialized state continues in the file's scheme
+    let mut i = Instance::new("t", None, false);
+    let snap = crate::state::deserialize(&bytes).expect("deserialize");
+    assert_eq!(i.set_state(&snap), Status::Ok);
+    assert_eq!(i.get_integer(vr("scheme")), Ok(2));
+    for (k, fx) in from_file.iter().enumerate().skip(5) {
+        assert_eq!(i.set_real(vr("cx"), 0.002 + 0.004 * k as f64), Status::Ok);
+        assert_eq!(i.do_step(k as f64 * 1e-4, 1e-4), Status::Ok);
+        assert_eq!(i.get_real(vr("Fx")), Ok(*fx), "step {k}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -90,9 +90,10 @@ impl Instance {
         self.inputs[In::Core(InputId::V).index()]
     }
 
-    /// The scheme the model runs: the one rel_tol chose, else the parameter `scheme`.
-    pub(super) fn scheme(&self) -> Scheme {
-        self.tol_scheme.unwrap_or_else(|| self.settings.scheme())
+    /// The scheme the instance asks the model to run: the one rel_tol chose, else the
+    /// parameter `scheme` if set; None: the configuration's.
+    pub(super) fn scheme(&self) -> Option<Scheme> {
+        self.tol_scheme.or(self.settings.scheme())
     }
 
     /// The outputs for the current inputs: after initialization those of the last step; in
