@@ -227,7 +227,19 @@ fn diagnose_report_does_not_depend_on_the_thread_count() {
         }
         let (code, out, err) = ecf(&a);
         assert_eq!(code, 0, "{err}");
-        out
+        // everything but the wall time of the search of formula forms (it runs here: on this
+        // grid the best model is not at the data's noise)
+        let mut v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let s = v["search"]
+            .as_object_mut()
+            .expect("a search of formula forms");
+        assert!(s.remove("seconds").is_some_and(|t| t.as_f64().is_some()));
+        // and the verdict's "... tried in N s"
+        let verdict = v["verdict"].as_str().expect("verdict").to_string();
+        let at = verdict.find(" tried in ").expect("the search's time") + 10;
+        let end = at + verdict[at..].find(" s").expect("seconds");
+        v["verdict"] = format!("{}{}", &verdict[..at], &verdict[end..]).into();
+        v.to_string()
     };
     let one = run(Some("1"));
     assert!(one.contains("\"candidates\""), "{one}");

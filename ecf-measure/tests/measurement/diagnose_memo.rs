@@ -121,11 +121,22 @@ fn diagnosis_does_not_depend_on_the_thread_count() {
     let cfg = with_grid(preset("dry"), 10, 5);
     let one = diagnose(&cfg, &data, 1, &|_| {}).unwrap();
     let three = diagnose(&cfg, &data, 3, &|_| {}).unwrap();
-    let (a, b) = (
-        serde_json::to_string(&one).unwrap(),
-        serde_json::to_string(&three).unwrap(),
-    );
-    assert_eq!(a, b);
+    // everything but the wall time the search of formula forms took (it runs here: on this
+    // grid the best model is not at the data's noise)
+    let json = |d: &ecf_measure::diagnose::Diagnosis| {
+        let mut v = serde_json::to_value(d).unwrap();
+        let s = v["search"]
+            .as_object_mut()
+            .expect("a search of formula forms");
+        assert!(s.remove("seconds").is_some_and(|t| t.as_f64().is_some()));
+        // and the verdict's "... tried in N s"
+        let verdict = v["verdict"].as_str().expect("verdict").to_string();
+        let at = verdict.find(" tried in ").expect("the search's time") + 10;
+        let end = at + verdict[at..].find(" s").expect("seconds");
+        v["verdict"] = format!("{}{}", &verdict[..at], &verdict[end..]).into();
+        v.to_string()
+    };
+    assert_eq!(json(&one), json(&three));
     assert!(!one.candidates.is_empty());
 }
 
