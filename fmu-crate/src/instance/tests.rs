@@ -526,5 +526,24 @@ fn a_configuration_files_scheme_runs_unless_the_parameter_sets_another() {
         assert_eq!(i.do_step(k as f64 * 1e-4, 1e-4), Status::Ok);
         assert_eq!(i.get_real(vr("Fx")), Ok(*fx), "step {k}");
     }
+    // without a grid in the file the start value of rel_tol chooses the grid among the table's
+    // rows of the file's scheme, as for an explicit scheme = 1
+    let cont = dir.join("continuous.json");
+    std::fs::write(&cont, r#"{"preset": "dry", "scheme": "continuous"}"#).expect("w");
+    let mut i = Instance::new("t", None, true);
+    assert_eq!(
+        i.set_string(vr("config_file"), cont.to_str().unwrap()),
+        Status::Ok
+    );
+    assert_eq!(i.set_real(vr("v"), 20.0), Status::Ok);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Ok, "{:?}", i.take_logs());
+    assert_eq!(i.get_integer(vr("scheme")), Ok(1));
+    let logs = i.take_logs();
+    assert!(
+        logs.iter()
+            .any(|l| l.text.contains("rel_tol") && l.text.contains("continuous")),
+        "{logs:?}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
