@@ -552,6 +552,13 @@ mod tests {
         // the scheme says how to compute, not what: the state loads into a cells model
         m_cells.load_state(&m_ho.save_state()).unwrap();
         assert_eq!(m_cells.outputs().fx.to_bits(), f_ho.to_bits());
+        // and steps on in its own scheme: as a cells model set to ho's state would, not as ho
+        let (mut m_ho, mut twin) = (m_ho, Model::new(&small).unwrap());
+        twin.load_state(&m_ho.save_state()).unwrap();
+        let next = Inputs { cx: 0.02, ..at };
+        let a = m_cells.step(1e-4, &next).unwrap().fx;
+        assert_eq!(a.to_bits(), twin.step(1e-4, &next).unwrap().fx.to_bits());
+        assert_ne!(a.to_bits(), m_ho.step(1e-4, &next).unwrap().fx.to_bits());
         // but not into a model of another grid
         assert!(Model::new(&cells)
             .unwrap()

@@ -612,7 +612,8 @@ impl ModelArgs {
     /// chosen scheme (None without --tol). `dt`: the time step (s) of a transient command;
     /// `steady`: a steady command (curve, field: the rows of the schemes whose steady march
     /// they are, cells and cells-ho); `explicit_scheme`: the explicit --scheme, if any. An
-    /// explicit --grid or --scheme restricts the choice to the table's rows with them; a
+    /// explicit --grid or --scheme (else the configuration's scheme other than cells, as in
+    /// the FMU) restricts the choice to the table's rows with them; a
     /// --grid not in the table is used as given, with a note that its error is not
     /// tabulated. Prints the choice on stderr.
     fn apply_tol(
@@ -635,11 +636,18 @@ impl ModelArgs {
             });
         }
         let grid = self.grid.as_ref().map(|_| cfg.grid);
+        // the explicit --scheme, else a configuration file's scheme other than cells (as the
+        // FMU's rel_tol; for a steady command only cells-ho: continuous's steady state is
+        // the cells march)
+        let file_scheme = Some(cfg.scheme)
+            .filter(|s| *s == Scheme::CellsHigher || (!steady && *s == Scheme::Continuous));
+        let file_scheme = file_scheme.filter(|_| explicit_scheme.is_none());
+        let scheme = explicit_scheme.or(file_scheme);
         let filter = Filter {
             preset: tolerance::scope_of(cfg),
             nx: grid.map(|g| g.nx),
             ny: grid.map(|g| g.ny),
-            scheme: explicit_scheme,
+            scheme,
             steady,
         };
         let dt = dt.filter(|d| d.is_finite() && *d > 0.0);
@@ -652,22 +660,28 @@ impl ModelArgs {
                     ""
                 };
                 let given = if grid.is_some() || explicit_scheme.is_some() {
-                    " (within the explicit --grid/--scheme)"
+                    " (within the explicit --grid/--scheme)".to_string()
+                } else if let Some(s) = file_scheme {
+                    format!(" (within the configuration's scheme {})", s.name())
                 } else {
-                    ""
+                    String::new()
                 };
                 let level = if c.met { "note" } else { "warning" };
                 eprintln!("{level}: --tol {tol}{what}{given}: {}", c.message());
                 Ok(Some(c.scheme))
             }
-            Err(CreepError::Config { .. }) if grid.is_some() || explicit_scheme.is_some() => {
+            Err(CreepError::Config { .. }) if grid.is_some() || scheme.is_some() => {
+                let with = match (explicit_scheme, file_scheme) {
+                    (Some(s), _) => format!(" and --scheme {}", s.name()),
+                    (None, Some(s)) => format!(" and the configuration's scheme {}", s.name()),
+                    (None, None) => String::new(),
+                };
                 eprintln!(
-                    "note: --tol {tol}: the accuracy table has no row with the explicit --grid {}x{}{}: its error is not measured; running with the explicit settings",
+                    "note: --tol {tol}: the accuracy table has no row with the explicit --grid {}x{}{with}: its error is not measured; running with the explicit settings",
                     cfg.grid.nx,
                     cfg.grid.ny,
-                    explicit_scheme.map_or(String::new(), |s| format!(" and --scheme {}", s.name()))
                 );
-                Ok(explicit_scheme)
+                Ok(scheme)
             }
             Err(e) => Err(e),
         }

@@ -797,5 +797,47 @@ fn a_configuration_files_scheme_runs_unless_scheme_is_given() {
         assert_ne!(from_file, cells, "{cmd:?}");
         assert_eq!(run(cmd, &["--config", f], Some("cells")), cells, "{cmd:?}");
     }
+    // --tol chooses among the rows of the file's scheme (as the FMU's rel_tol does)
+    let cont = dir.join("continuous.json");
+    std::fs::write(&cont, r#"{"preset": "dry", "scheme": "continuous"}"#).unwrap();
+    let (code, _, err) = ecf(&[
+        "step",
+        "--config",
+        cont.to_str().unwrap(),
+        "--tol",
+        "0.02",
+        "--cx-from",
+        "0.002",
+        "--cx-to",
+        "0.01",
+        "--duration-ms",
+        "1",
+        "--dt-ms",
+        "0.25",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("within the configuration's scheme continuous")
+            && err.contains("scheme continuous:"),
+        "{err}"
+    );
+    // a fit writes the scheme it ran with into the fitted configuration
+    let ex = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/measurements");
+    let out = dir.join("fitted.json");
+    let (code, _, err) = ecf(&[
+        "fit",
+        ex.join("humid.csv").to_str().unwrap(),
+        "--config",
+        ex.join("dry-humid.json").to_str().unwrap(),
+        "--free",
+        "humid.k",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let fitted: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(fitted["scheme"], "cells-ho");
     let _ = std::fs::remove_dir_all(&dir);
 }
