@@ -129,6 +129,14 @@ impl Model {
         }
     }
 
+    /// How a step advances the bristles now (None for Polach, which has none).
+    pub fn scheme(&self) -> Option<crate::engine::Scheme> {
+        match self {
+            Model::Bristle(c) => Some(c.scheme()),
+            Model::Polach { .. } => None,
+        }
+    }
+
     /// Warnings since the last call (drained).
     pub fn take_warnings(&mut self) -> Vec<String> {
         match self {

@@ -568,6 +568,36 @@ mod tests {
     }
 
     #[test]
+    fn the_configurations_scheme_is_its_last_byte_and_version_6_has_cells() {
+        use creep_core::engine::Scheme;
+        let cfg = Config::from_json_str(r#"{"preset": "dry", "scheme": "cells-ho"}"#, "x").unwrap();
+        let mut w = W::new();
+        put_config(&mut w, &cfg);
+        let bytes = w.into_inner();
+        assert_eq!(bytes.last(), Some(&2));
+        let mut r = R::new(&bytes);
+        assert_eq!(get_config(&mut r, VERSION).unwrap(), cfg);
+        assert_eq!(r.position(), bytes.len());
+        // version 6 wrote no scheme byte: the same configuration, cell by cell
+        let v6 = &bytes[..bytes.len() - 1];
+        let mut r = R::new(v6);
+        let old = get_config(&mut r, 6).unwrap();
+        assert_eq!((old.scheme, r.position()), (Scheme::CellsMarch, v6.len()));
+        assert_eq!(
+            Config {
+                scheme: cfg.scheme,
+                ..old
+            },
+            cfg
+        );
+        // a code no scheme has is refused
+        let mut bad = bytes.clone();
+        *bad.last_mut().unwrap() = 7;
+        let e = get_config(&mut R::new(&bad), VERSION).unwrap_err();
+        assert!(e.contains("scheme code 7"), "{e}");
+    }
+
+    #[test]
     fn round_trip_continues_bit_for_bit_and_corruption_is_refused() {
         let mut i = Instance::new("t", None, false);
         let vr = |n: &str| {

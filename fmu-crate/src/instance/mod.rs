@@ -445,13 +445,20 @@ impl Instance {
         }
         self.init_failed = false;
         self.phase = Phase::StepComplete;
-        let cfg = self
+        // the configuration as built, and the scheme the model runs (rel_tol's or the
+        // parameter's may differ from the configuration's)
+        let (cfg, running) = self
             .model
             .as_ref()
-            .map(|m| m.config().to_json().to_string())
+            .map(|m| {
+                let running = m
+                    .scheme()
+                    .map_or(String::new(), |s| format!("; running scheme {}", s.name()));
+                (m.config().to_json().to_string(), running)
+            })
             .unwrap_or_default();
         self.event(format!(
-            "fmi2ExitInitializationMode: initialized at t = {} s with {cfg}",
+            "fmi2ExitInitializationMode: initialized at t = {} s with {cfg}{running}",
             self.time
         ));
         st = st.max(self.log_tolerance_choice());

@@ -515,6 +515,22 @@ fn a_configuration_files_scheme_runs_unless_the_parameter_sets_another() {
     assert_ne!(cells, from_file);
     let (code, continuous, _) = run(&ho, Some(1));
     assert_eq!(code, Ok(1));
+    // the initialization's log names the scheme that runs, not only the file's
+    let mut i = Instance::new("t", None, true);
+    assert_eq!(
+        i.set_string(vr("config_file"), ho.to_str().unwrap()),
+        Status::Ok
+    );
+    assert_eq!(i.set_integer(vr("scheme"), 1), Status::Ok);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Ok);
+    let logs = i.take_logs();
+    assert!(
+        logs.iter()
+            .any(|l| l.text.contains("\"scheme\":\"cells-ho\"")
+                && l.text.contains("running scheme continuous")),
+        "{logs:?}"
+    );
     assert_ne!(continuous, from_file);
     // a fresh instance, no file: the deserialized state continues in the file's scheme
     let mut i = Instance::new("t", None, false);
