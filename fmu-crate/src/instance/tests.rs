@@ -409,6 +409,23 @@ fn the_default_rel_tol_runs_in_real_time_at_20_m_s_and_an_explicit_grid_turns_it
     assert_eq!(i.get_integer(vr("ny")), Ok(c.ny as i32));
 }
 
+/// An instance reading the configuration file `file`, with the integer settings `ints`, at
+/// v = 20 m/s, initialized (logs kept).
+fn initialized_from(file: &std::path::Path, ints: &[(&str, i32)]) -> Instance {
+    let mut i = Instance::new("t", None, true);
+    assert_eq!(
+        i.set_string(vr("config_file"), file.to_str().unwrap()),
+        Status::Ok
+    );
+    for (n, x) in ints {
+        assert_eq!(i.set_integer(vr(n), *x), Status::Ok, "{n} = {x}");
+    }
+    assert_eq!(i.set_real(vr("v"), 20.0), Status::Ok);
+    assert_eq!(i.enter_initialization(), Status::Ok);
+    assert_eq!(i.exit_initialization(), Status::Ok, "{:?}", i.take_logs());
+    i
+}
+
 /// The start value of rel_tol is off when the configuration file gives a `grid` (even after a
 /// state restore, where the configuration was not resolved from the file) and chooses the
 /// table's grid when it does not.
@@ -431,14 +448,7 @@ fn a_configuration_file_with_a_grid_turns_the_default_rel_tol_off() {
         "the test needs the table's grid to differ"
     );
     let init = |file: &std::path::Path| {
-        let mut i = Instance::new("t", None, true);
-        assert_eq!(
-            i.set_string(vr("config_file"), file.to_str().unwrap()),
-            Status::Ok
-        );
-        assert_eq!(i.set_real(vr("v"), 20.0), Status::Ok);
-        assert_eq!(i.enter_initialization(), Status::Ok);
-        assert_eq!(i.exit_initialization(), Status::Ok, "{:?}", i.take_logs());
+        let mut i = initialized_from(file, &[]);
         let grid = (i.get_integer(vr("nx")), i.get_integer(vr("ny")));
         let chose = i.take_logs().iter().any(|l| l.text.contains("rel_tol"));
         (i, grid, chose)
@@ -482,17 +492,8 @@ fn a_configuration_files_scheme_runs_unless_the_parameter_sets_another() {
     std::fs::write(&ho, format!(r#"{{{grid}, "scheme": "cells-ho"}}"#)).expect("w");
     std::fs::write(&plain, format!("{{{grid}}}")).expect("w");
     let run = |file: &std::path::Path, scheme: Option<i32>| {
-        let mut i = Instance::new("t", None, false);
-        assert_eq!(
-            i.set_string(vr("config_file"), file.to_str().unwrap()),
-            Status::Ok
-        );
-        if let Some(s) = scheme {
-            assert_eq!(i.set_integer(vr("scheme"), s), Status::Ok);
-        }
-        assert_eq!(i.set_real(vr("v"), 20.0), Status::Ok);
-        assert_eq!(i.enter_initialization(), Status::Ok);
-        assert_eq!(i.exit_initialization(), Status::Ok, "{:?}", i.take_logs());
+        let scheme: Vec<(&str, i32)> = scheme.map(|s| ("scheme", s)).into_iter().collect();
+        let mut i = initialized_from(file, &scheme);
         let code = i.get_integer(vr("scheme"));
         let mut fx = Vec::new();
         let mut saved = None;
@@ -516,15 +517,7 @@ fn a_configuration_files_scheme_runs_unless_the_parameter_sets_another() {
     let (code, continuous, _) = run(&ho, Some(1));
     assert_eq!(code, Ok(1));
     // the initialization's log names the scheme that runs, not only the file's
-    let mut i = Instance::new("t", None, true);
-    assert_eq!(
-        i.set_string(vr("config_file"), ho.to_str().unwrap()),
-        Status::Ok
-    );
-    assert_eq!(i.set_integer(vr("scheme"), 1), Status::Ok);
-    assert_eq!(i.enter_initialization(), Status::Ok);
-    assert_eq!(i.exit_initialization(), Status::Ok);
-    let logs = i.take_logs();
+    let logs = initialized_from(&ho, &[("scheme", 1)]).take_logs();
     assert!(
         logs.iter()
             .any(|l| l.text.contains("\"scheme\":\"cells-ho\"")
@@ -546,14 +539,7 @@ fn a_configuration_files_scheme_runs_unless_the_parameter_sets_another() {
     // rows of the file's scheme, as for an explicit scheme = 1
     let cont = dir.join("continuous.json");
     std::fs::write(&cont, r#"{"preset": "dry", "scheme": "continuous"}"#).expect("w");
-    let mut i = Instance::new("t", None, true);
-    assert_eq!(
-        i.set_string(vr("config_file"), cont.to_str().unwrap()),
-        Status::Ok
-    );
-    assert_eq!(i.set_real(vr("v"), 20.0), Status::Ok);
-    assert_eq!(i.enter_initialization(), Status::Ok);
-    assert_eq!(i.exit_initialization(), Status::Ok, "{:?}", i.take_logs());
+    let mut i = initialized_from(&cont, &[]);
     assert_eq!(i.get_integer(vr("scheme")), Ok(1));
     let logs = i.take_logs();
     assert!(
