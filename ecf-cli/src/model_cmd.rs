@@ -636,12 +636,9 @@ impl ModelArgs {
             });
         }
         let grid = self.grid.as_ref().map(|_| cfg.grid);
-        // the explicit --scheme, else a configuration file's scheme other than cells (as the
-        // FMU's rel_tol; for a steady command only cells-ho: continuous's steady state is
-        // the cells march)
-        let file_scheme = Some(cfg.scheme)
-            .filter(|s| *s == Scheme::CellsHigher || (!steady && *s == Scheme::Continuous));
-        let file_scheme = file_scheme.filter(|_| explicit_scheme.is_none());
+        // the explicit --scheme, else the configuration's (as the FMU's rel_tol)
+        let file_scheme =
+            tolerance::restricting_scheme(cfg, steady).filter(|_| explicit_scheme.is_none());
         let scheme = explicit_scheme.or(file_scheme);
         let filter = Filter {
             preset: tolerance::scope_of(cfg),

@@ -572,10 +572,10 @@ impl Settings {
             preset: creep_core::tolerance::scope_of(cfg),
             nx: self.nx,
             ny: self.ny,
-            // the parameter's scheme, else a configuration file's other than cells
+            // the parameter's scheme, else the configuration's (as the CLI's --tol)
             scheme: self
                 .scheme()
-                .or(Some(cfg.scheme).filter(|s| *s != Scheme::CellsMarch)),
+                .or(creep_core::tolerance::restricting_scheme(cfg, false)),
             steady: false,
         };
         match creep_core::tolerance::choose(rel_tol, v, None, filter) {
