@@ -23,7 +23,7 @@ import numpy as np
 # --------------------------------------------------------------------------- settings
 FULL = {
     "mode": "full",
-    "grid": None,  # None: creep-core's default grid 80x21 (docs/model.md section 9)
+    "grid": None,  # None: creep-core's default grid 80x21 (ECF: cells-ho, FASTSIM: cells; docs/model.md section 9)
     "wet_grid": [320, 21],  # docs/model.md section 9: the wet preset needs a finer strip
     "curve_low_n": 41,  # geometric points from 0.01 % to 1 %
     "curve_high_n": 197,  # linear points from 1 % to 50 %
@@ -58,7 +58,7 @@ def grid_of(S: dict, wet: bool = False):
 
 def grid_name(S: dict, wet: bool = False) -> str:
     g = grid_of(S, wet)
-    return f"{g[0]}x{g[1]}" if g else "80x21 (default)"
+    return f"{g[0]}x{g[1]}" if g else "80x21 (default; ECF cells-ho)"
 
 
 def curve_cx(S: dict, c_max: float = 0.5) -> np.ndarray:

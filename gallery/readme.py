@@ -26,7 +26,7 @@ def status(c: Check) -> str:
 def settings_table(S: dict) -> str:
     D = S["drivetrain"]
     rows = [
-        ("bristle grid (ECF, FASTSIM)", f"{S['grid'][0]}x{S['grid'][1]}" if S["grid"] else "80x21 (creep-core default)"),
+        ("bristle grid (ECF, FASTSIM)", f"{S['grid'][0]}x{S['grid'][1]}" if S["grid"] else "80x21 (creep-core default; ECF cells-ho, FASTSIM cells)"),
         ("bristle grid, wet preset", f"{S['wet_grid'][0]}x{S['wet_grid'][1]}"),
         ("creep curves", f"0, {S['curve_low_n']} geometric points 0.01-1 %, {S['curve_high_n'] - 1} linear points 1-50 %"),
         ("creepage steps", f"time step {S['step_dt_ms']} ms, {S['step_duration_ms']} ms after the step"),

@@ -20,8 +20,9 @@ def unzipdir(fmu_path, tmp_path_factory):
     return extract(fmu_path, unzipdir=str(tmp_path_factory.mktemp("ecf_fmu_tol")))
 
 
-# the FMU parameter `scheme`'s code of a scheme name of the table (docs/fmu.md, Variables)
-SCHEME_CODE = {"cells": 0, "continuous": 1, "cells-ho": 2}
+# the FMU parameter `scheme`'s code of a scheme name of the table (docs/fmu.md, Variables;
+# 0 = not set, read back after initialization as the code of the scheme that runs)
+SCHEME_CODE = {"continuous": 1, "cells-ho": 2, "cells": 3}
 
 
 def table(repo_root):
@@ -111,10 +112,10 @@ def test_the_start_value_chooses_a_real_time_grid_at_20_m_s(md, unzipdir, repo_r
     assert any(f"grid {nx}x{ny}" in r[3] and r[2] == "logEvents" for r in rec.records), rec.records
     s.terminate()
     s.freeInstance()
-    # nx and ny given: the start value does not apply
+    # nx and ny given: the start value does not apply; the scheme is ECF's default, cells-ho
     rec = Recorder()
     s = start(md, unzipdir, rec, None, 20.0, ints=[("nx", 30), ("ny", 7)], preset=preset)
-    assert list(s.getInteger([s_vr(md, "nx"), s_vr(md, "ny"), s_vr(md, "scheme")])) == [30, 7, 0]
+    assert list(s.getInteger([s_vr(md, "nx"), s_vr(md, "ny"), s_vr(md, "scheme")])) == [30, 7, SCHEME_CODE["cells-ho"]]
     assert not any(r[1] == 1 for r in rec.records), rec.records
     s.freeInstance()
 

@@ -161,7 +161,8 @@ pub struct Config {
     pub grid: Grid,
     /// How a model built from this configuration integrates the bristles' moves, in steady
     /// marches and time steps (configuration key `scheme`: `cells`, `cells-ho` or
-    /// `continuous`; default `cells`; [`crate::engine::Scheme`]). How to compute, not what:
+    /// `continuous`; default [`crate::engine::Scheme::default_for`] the model: `cells-ho`
+    /// for ECF, `cells` for FASTSIM and Polach). How to compute, not what:
     /// [`Model::set_scheme`](crate::Model::set_scheme) changes it for a model, and a saved
     /// state loads into a model of another scheme.
     pub scheme: crate::engine::Scheme,
@@ -578,14 +579,15 @@ impl Config {
                         "missing \"model\" (ecf, fastsim or polach) or \"preset\"".into(),
                     )
                 })?;
+                let model = ModelKind::parse(model).map_err(|e| cfg_err(src, e.to_string()))?;
                 Config {
-                    model: ModelKind::parse(model).map_err(|e| cfg_err(src, e.to_string()))?,
+                    model,
                     preset: "custom".into(),
                     effects: EffectSet::empty(),
                     params: Params::default(),
                     bound: Bound::Elliptic,
                     grid: DEFAULT_GRID,
-                    scheme: crate::engine::Scheme::CellsMarch,
+                    scheme: crate::engine::Scheme::default_for(model),
                     geometry: DEFAULT_GEOMETRY,
                     modifiers: Vec::new(),
                 }
@@ -890,9 +892,19 @@ mod tests {
     #[test]
     fn a_configuration_names_its_scheme() {
         use crate::engine::Scheme;
+        // a configuration that names no scheme runs its model's default
         let c = Config::preset("dry").unwrap();
-        assert_eq!(c.scheme, Scheme::CellsMarch);
-        assert_eq!(c.to_json()["scheme"], "cells");
+        assert_eq!(c.scheme, Scheme::CellsHigher);
+        assert_eq!(c.to_json()["scheme"], "cells-ho");
+        let c = Config::from_json_str(r#"{"model": "ecf"}"#, "x").unwrap();
+        assert_eq!(c.scheme, Scheme::CellsHigher);
+        for m in ["fastsim", "polach"] {
+            assert_eq!(
+                Config::for_model(m).unwrap().scheme,
+                Scheme::CellsMarch,
+                "{m}"
+            );
+        }
         for s in [Scheme::CellsMarch, Scheme::CellsHigher, Scheme::Continuous] {
             let json = format!(r#"{{"preset": "dry", "scheme": "{}"}}"#, s.name());
             let c = Config::from_json_str(&json, "x").unwrap();

@@ -519,12 +519,10 @@ mod tests {
     #[test]
     fn a_model_runs_its_configurations_scheme_and_its_state_loads_under_another() {
         use crate::engine::Scheme;
-        let cells = Config::preset("dry").unwrap();
-        let ho = Config::from_json_str(
-            r#"{"preset": "dry", "scheme": "cells-ho", "grid": {"nx": 20, "ny": 5}}"#,
-            "x",
-        )
-        .unwrap();
+        let cells = Config::from_json_str(r#"{"preset": "dry", "scheme": "cells"}"#, "x").unwrap();
+        let ho = Config::from_json_str(r#"{"preset": "dry", "grid": {"nx": 20, "ny": 5}}"#, "x")
+            .unwrap();
+        assert_eq!(ho.scheme, Scheme::CellsHigher, "ECF's default");
         let mut small = cells.clone();
         small.grid = ho.grid;
         let at = Inputs {

@@ -471,11 +471,13 @@ fn describe(f: Filter) -> String {
 }
 
 /// The scheme of `cfg` that restricts a tolerance's choice to its rows as an explicit one
-/// does (the CLI's --tol, the FMU's rel_tol): `cells-ho`, or `continuous` for time steps
-/// (`steady` false; continuous's steady state is the cells march). `cells`, the default,
-/// restricts nothing: a file that names it is not told from one that does not.
+/// does (the CLI's --tol, the FMU's rel_tol): any scheme but its model's default
+/// ([`Scheme::default_for`]: `cells-ho` for ECF), `continuous` only for time steps (`steady`
+/// false; continuous's steady state is the cells march). The default restricts nothing: a
+/// file that names it is not told from one that does not.
 pub fn restricting_scheme(cfg: &crate::Config, steady: bool) -> Option<Scheme> {
-    Some(cfg.scheme).filter(|s| *s == Scheme::CellsHigher || (!steady && *s == Scheme::Continuous))
+    Some(cfg.scheme)
+        .filter(|s| *s != Scheme::default_for(cfg.model) && !(steady && *s == Scheme::Continuous))
 }
 
 /// The tabulated preset that `cfg` is, unchanged (rule 2): its name if the table has rows of

@@ -18,8 +18,9 @@
 //! its uncertainty is stated as max_t |L - X_n| (the size of the correction). Errors are in
 //! % of max_t |L| (for the temperature, of the largest rise).
 //!
-//! Schemes: `cells` is [`Scheme::CellsMarch`], the default of `ecf --scheme cells` and of the
-//! FMU (`scheme = 0`), so that the costs are those a user gets; the reference
+//! Schemes: `cells` is [`Scheme::CellsMarch`], what `ecf --scheme cells` and the FMU's
+//! `scheme = 3` run (ECF's default before issue 24's step 11), so that the costs are those a
+//! user gets; the reference
 //! [`Scheme::Cells`] gives the same errors to 0.001 % at a higher cost (checked on the
 //! `--quick` cases). `continuous` is [`Scheme::Continuous`], `cells-ho` is
 //! [`Scheme::CellsHigher`] (the higher-order rules along each move).

@@ -11,13 +11,14 @@ use std::path::PathBuf;
 /// section 3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum SchemeArg {
-    /// Cell by cell: the reference, independent of the time step within 0.5 %
+    /// Cell by cell: the first-order reference, independent of the time step within 0.5 %
     Cells,
     /// Continuous sub-steps of up to 8 cells: 2-4x faster on 80x21 at 0.1-1 ms steps, its
     /// dependence on the time step up to about 1 %
     Continuous,
     /// Cell by cell with higher-order rules along each move (docs/model.md section 9, step
-    /// 8): about twice the cost of cells on the same grid, more accurate at equal cost
+    /// 8): about twice the cost of cells on the same grid, more accurate at equal cost; ECF's
+    /// default
     CellsHo,
 }
 
@@ -36,8 +37,8 @@ impl SchemeArg {
 pub(crate) struct TransientArgs {
     /// How a time step advances the bristles: cells (reference), continuous (faster) or
     /// cells-ho (higher-order rules along each move; see docs/model.md sections 3 and 9).
-    /// Default: the scheme --tol chooses, else the configuration's (cells unless --config
-    /// names another)
+    /// Default: the scheme --tol chooses, else the configuration's (cells-ho for ECF, cells
+    /// for FASTSIM, unless --config names another)
     #[arg(long, value_enum)]
     scheme: Option<SchemeArg>,
 }
@@ -61,10 +62,10 @@ impl TransientArgs {
 /// higher-order rules change (the continuous scheme's steady state is the cells march).
 #[derive(Clone, Copy, Debug, ValueEnum)]
 enum SteadySchemeArg {
-    /// Cell by cell (the default)
+    /// Cell by cell (the first-order reference; FASTSIM's default)
     Cells,
     /// Cell by cell with the higher-order rules along each move (docs/model.md section 9,
-    /// step 8)
+    /// step 8; ECF's default)
     CellsHo,
 }
 
@@ -72,7 +73,8 @@ enum SteadySchemeArg {
 pub(crate) struct SteadyArgs {
     /// How the steady march integrates a move: cells or cells-ho (higher-order rules along
     /// each move; docs/model.md sections 3 and 9). Default: the scheme --tol chooses among
-    /// these two, else the configuration's (cells unless --config names another)
+    /// these two, else the configuration's (cells-ho for ECF, cells for FASTSIM, unless
+    /// --config names another)
     #[arg(long, value_enum)]
     scheme: Option<SteadySchemeArg>,
 }

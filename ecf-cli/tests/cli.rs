@@ -467,8 +467,8 @@ fn step_field_at_ms_starts_at_the_steady_field_and_ends_at_the_new_one() {
 
 #[test]
 fn step_and_sine_take_the_scheme() {
-    // --scheme cells is the default; continuous gives other numbers within about 1 %; a bad
-    // value names the flag and the accepted values
+    // --scheme cells-ho is ECF's default; cells and continuous give other numbers within
+    // about 2 %; a bad value names the flag and the accepted values
     let run = |cmd: &str, scheme: Option<&str>| {
         let mut args = vec![cmd, "--preset", "dry", "--grid", "40x11", "--v-mps", "20"];
         if cmd == "step" {
@@ -488,13 +488,17 @@ fn step_and_sine_take_the_scheme() {
     };
     for cmd in ["step", "sine"] {
         let default = run(cmd, None);
-        assert_eq!(default, run(cmd, Some("cells")), "{cmd}");
+        assert_eq!(default, run(cmd, Some("cells-ho")), "{cmd}");
+        let cells = run(cmd, Some("cells"));
         let cont = run(cmd, Some("continuous"));
-        assert!(cont != default, "{cmd}: the scheme must change the numbers");
-        assert!(
-            (cont - default).abs() < 0.02 * default,
-            "{cmd}: {cont} vs {default}"
-        );
+        for (name, other) in [("cells", cells), ("continuous", cont)] {
+            assert!(other != default, "{cmd}: {name} must change the numbers");
+            assert!(
+                (other - default).abs() < 0.02 * default,
+                "{cmd}: {name} {other} vs {default}"
+            );
+        }
+        assert!(cont != cells, "{cmd}");
     }
     let (code, _, err) = ecf(&[
         "step",
@@ -514,7 +518,7 @@ fn step_and_sine_take_the_scheme() {
 
 #[test]
 fn curve_and_field_take_the_steady_scheme() {
-    // the steady commands take --scheme cells (the default) or cells-ho, whose higher-order
+    // the steady commands take --scheme cells or cells-ho (ECF's default), whose higher-order
     // rules change the steady march by about the grid's error; continuous, whose steady
     // state is the cells march, is refused with the accepted values
     let curve = |scheme: Option<&str>| {
@@ -533,9 +537,9 @@ fn curve_and_field_take_the_steady_scheme() {
             .collect::<Vec<f64>>()
     };
     let default = curve(None);
-    assert_eq!(default, curve(Some("cells")));
-    let ho = curve(Some("cells-ho"));
-    for (h, d) in ho.iter().zip(&default) {
+    assert_eq!(default, curve(Some("cells-ho")));
+    let cells = curve(Some("cells"));
+    for (d, h) in cells.iter().zip(&default) {
         assert!(h != d, "cells-ho must change the steady march: {h} vs {d}");
         assert!((h - d).abs() < 0.03 * d, "{h} vs {d}");
     }
@@ -759,10 +763,10 @@ fn a_run_of_too_many_steps_is_refused() {
 fn a_configuration_files_scheme_runs_unless_scheme_is_given() {
     let dir = std::env::temp_dir().join(format!("ecf-cli-scheme-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("ho.json");
+    let file = dir.join("cells.json");
     std::fs::write(
         &file,
-        r#"{"preset": "dry", "grid": {"nx": 20, "ny": 5}, "scheme": "cells-ho"}"#,
+        r#"{"preset": "dry", "grid": {"nx": 20, "ny": 5}, "scheme": "cells"}"#,
     )
     .unwrap();
     let run = |cmd: &[&str], source: &[&str], scheme: Option<&str>| {
@@ -792,10 +796,15 @@ fn a_configuration_files_scheme_runs_unless_scheme_is_given() {
         ][..],
     ] {
         let from_file = run(cmd, &["--config", f], None);
-        assert_eq!(from_file, run(cmd, &preset, Some("cells-ho")), "{cmd:?}");
-        let cells = run(cmd, &preset, None);
-        assert_ne!(from_file, cells, "{cmd:?}");
-        assert_eq!(run(cmd, &["--config", f], Some("cells")), cells, "{cmd:?}");
+        assert_eq!(from_file, run(cmd, &preset, Some("cells")), "{cmd:?}");
+        // the preset names no scheme: ECF's default, cells-ho
+        let default = run(cmd, &preset, None);
+        assert_ne!(from_file, default, "{cmd:?}");
+        assert_eq!(
+            run(cmd, &["--config", f], Some("cells-ho")),
+            default,
+            "{cmd:?}"
+        );
     }
     // --tol chooses among the rows of the file's scheme (as the FMU's rel_tol does)
     let cont = dir.join("continuous.json");

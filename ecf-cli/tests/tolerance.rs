@@ -59,7 +59,7 @@ fn tol_runs_on_the_grid_and_scheme_the_table_gives_and_says_which() {
 fn explicit_grid_and_scheme_override_tol() {
     let loose = tolerance::choose(0.5, 5.0, Some(1e-3), DRY).expect("choice");
     assert_ne!((loose.nx, loose.ny), (80, 7), "the test needs another grid");
-    let (_, plain, _) = step(&["--grid", "80x7"]);
+    let (_, plain, _) = step(&["--grid", "80x7", "--scheme", "cells"]);
     let (code, out, err) = step(&["--tol", "0.5", "--grid", "80x7"]);
     assert_eq!(code, 0, "{err}");
     let (_, chosen, _) = step(&["--tol", "0.5"]);

@@ -207,9 +207,10 @@ pub struct Settings {
     pub ny: Option<usize>,
     /// Threads that advance the strips (0 or 1: the calling thread).
     pub threads: usize,
-    /// How a step advances the bristles, if set: 0 cell by cell, 1 continuous, 2 cell by
-    /// cell with the higher-order rules ([`scheme_code`]). None (the start value 0): the
-    /// configuration's `scheme` (cells unless the configuration file names another).
+    /// How a step advances the bristles, if set: 1 continuous, 2 cell by cell with the
+    /// higher-order rules, 3 cell by cell ([`scheme_code`]). None (the start value 0): the
+    /// configuration's `scheme` (its model's default, `cells-ho` for ECF, unless the
+    /// configuration file names another).
     pub scheme: Option<i32>,
     /// Relative tolerance on F_x that chooses the grid and scheme at initialization
     /// (fraction; 0 = off), if set to a value other than its start value
@@ -233,19 +234,19 @@ fn geo_of(geometry: Geometry, g: Geo) -> Option<f64> {
     }
 }
 
-/// The code of the parameter `scheme` for an engine scheme: 0 cell by cell
-/// ([`Scheme::CellsMarch`]; the reference [`Scheme::Cells`] too), 1 continuous, 2 cell by
-/// cell with the higher-order rules.
+/// The code of the parameter `scheme` for an engine scheme: 1 continuous, 2 cell by cell
+/// with the higher-order rules, 3 cell by cell ([`Scheme::CellsMarch`]; the reference
+/// [`Scheme::Cells`] too). 0, the start value, is "not set".
 pub fn scheme_code(s: Scheme) -> i32 {
     match s {
-        Scheme::CellsMarch | Scheme::Cells => 0,
         Scheme::Continuous => 1,
         Scheme::CellsHigher => 2,
+        Scheme::CellsMarch | Scheme::Cells => 3,
     }
 }
 
-/// The engine scheme of a code of the parameter `scheme` ([`scheme_code`]; any other code:
-/// cell by cell).
+/// The engine scheme of a code of the parameter `scheme` ([`scheme_code`]; 0 and any other
+/// code: cell by cell).
 pub fn scheme_of_code(c: i32) -> Scheme {
     match c {
         1 => Scheme::Continuous,

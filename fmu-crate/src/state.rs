@@ -1,6 +1,6 @@
 //! Serialized FMU state: an explicit, versioned little-endian byte format of a [`Snapshot`] (settings, inputs, time, configuration, and the core model's own state bytes).
 //!
-//! Layout (version 7): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
+//! Layout (version 8): magic `ECFFMUST`, u32 version, f64 time, u32 count + per input (its
 //! name as in modelDescription.xml, f64 value), settings (model, model_set, preset,
 //! config_file, columns, set parameters as u32 count and (name, f64) each, set effects as
 //! u32 count and (name, u8) each, nx, ny as u32 (0 = not set), i32 geometry, u32 count + per geometry
@@ -13,8 +13,9 @@
 //! and u8 the mode the state was taken in (0 Instantiated, 1 InitializationMode,
 //! 2 StepComplete, 3 Terminated), which fmi2SetFMUstate restores, and u8 the scheme
 //! `rel_tol` chose for the model (the code of the parameter `scheme`, 255: none chose one).
-//! Version 6 had no scheme byte in the configuration (cells); version 5 had no scheme byte
-//! at the end either (none chose one).
+//! Version 7 wrote the scheme codes of its day, 0 for cell by cell (today 3; 1 and 2 are
+//! the same); version 6 had no scheme byte in the configuration (cells); version 5 had no
+//! scheme byte at the end either (none chose one).
 //! Inputs, parameters, effects and geometry values are stored by name (those of creep-core's
 //! tables), so that a build with another input, parameter or effect reads the state: a value
 //! it lacks keeps its default (an effect: off in the configuration, not set in the settings);
@@ -38,7 +39,7 @@ use creep_core::{AnyModifier, Bound, Config, Geometry, Grid, Model, ModelKind, M
 /// Magic bytes at the start of a serialized FMU state.
 pub const MAGIC: &[u8; 8] = b"ECFFMUST";
 /// Format version written by this build.
-pub const VERSION: u32 = 7;
+pub const VERSION: u32 = 8;
 
 /// The inputs of format version 2, in its fixed order (version 3 stores each with its name).
 const V2_INPUTS: [&str; 10] = [
@@ -142,6 +143,17 @@ fn put_config(w: &mut W, c: &Config) {
     w.u8(crate::settings::scheme_code(c.scheme) as u8);
 }
 
+/// The scheme of a stored code (the parameter `scheme`'s, [`crate::settings::scheme_code`]) in
+/// a state of format `version`: 1 to 3 from version 8, 0 to 2 before (0 cell by cell); None
+/// for any other code.
+fn scheme_of_byte(c: u8, version: u32) -> Option<creep_core::engine::Scheme> {
+    match (c, version) {
+        (1..=3, 8..) => Some(crate::settings::scheme_of_code(c as i32)),
+        (0..=2, ..=7) => Some(crate::settings::scheme_of_code(c as i32)),
+        _ => None,
+    }
+}
+
 fn get_config(r: &mut R, version: u32) -> Result<Config, String> {
     let model = match r.u8()? {
         0 => ModelKind::Ecf,
@@ -205,10 +217,8 @@ fn get_config(r: &mut R, version: u32) -> Result<Config, String> {
         }
     }
     let scheme = if version >= 7 {
-        match r.u8()? {
-            c @ 0..=2 => crate::settings::scheme_of_code(c as i32),
-            c => return Err(format!("bad configuration scheme code {c}")),
-        }
+        let c = r.u8()?;
+        scheme_of_byte(c, version).ok_or_else(|| format!("bad configuration scheme code {c}"))?
     } else {
         creep_core::engine::Scheme::CellsMarch
     };
@@ -483,8 +493,7 @@ pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     let tol_scheme = if v >= 6 {
         match r.u8()? {
             255 => None,
-            c @ 0..=2 => Some(crate::settings::scheme_of_code(c as i32)),
-            c => return Err(format!("bad scheme code {c}")),
+            c => Some(scheme_of_byte(c, v).ok_or_else(|| format!("bad scheme code {c}"))?),
         }
     } else {
         None
@@ -568,7 +577,8 @@ mod tests {
     }
 
     #[test]
-    fn the_configurations_scheme_is_its_last_byte_and_version_6_has_cells() {
+    fn the_configurations_scheme_is_its_last_byte_version_7_coded_cells_0_and_version_6_has_cells()
+    {
         use creep_core::engine::Scheme;
         let cfg = Config::from_json_str(r#"{"preset": "dry", "scheme": "cells-ho"}"#, "x").unwrap();
         let mut w = W::new();
@@ -595,6 +605,20 @@ mod tests {
         *bad.last_mut().unwrap() = 7;
         let e = get_config(&mut R::new(&bad), VERSION).unwrap_err();
         assert!(e.contains("scheme code 7"), "{e}");
+        // cell by cell is 3 since version 8 and was 0 in version 7, where 3 meant nothing
+        let mut cells = bytes.clone();
+        *cells.last_mut().unwrap() = 3;
+        assert_eq!(
+            get_config(&mut R::new(&cells), VERSION).unwrap().scheme,
+            Scheme::CellsMarch
+        );
+        assert!(get_config(&mut R::new(&cells), 7).is_err());
+        *cells.last_mut().unwrap() = 0;
+        assert_eq!(
+            get_config(&mut R::new(&cells), 7).unwrap().scheme,
+            Scheme::CellsMarch
+        );
+        assert!(get_config(&mut R::new(&cells), VERSION).is_err());
     }
 
     #[test]

@@ -546,7 +546,7 @@ pub fn default_config() -> Config {
         params: creep_core::params::Params::default(),
         bound: creep_core::Bound::Elliptic,
         grid: creep_core::config::DEFAULT_GRID,
-        scheme: creep_core::engine::Scheme::CellsMarch,
+        scheme: creep_core::engine::Scheme::default_for(creep_core::ModelKind::Ecf),
         geometry: DEFAULT_GEOMETRY,
         modifiers: Vec::new(),
     })
@@ -636,10 +636,10 @@ pub fn table() -> Vec<Var> {
         kind: Kind::Integer,
         causality: Parameter,
         unit: None,
-        description: "how a step advances the bristles (the start value 0 means 'not set': a configuration file's `scheme` applies, else cell by cell): 0 cell by cell (reference, independent of the communication step within 0.5 %), 1 continuous sub-steps of up to 8 cells, one-cell pieces at the trailing edge and at the end of each step (2-4x faster at 0.1-1 ms steps on 80 x 21; its step dependence up to about 1 %, forces within 1.5 % of 0 under inputs that jump at every step), 2 cell by cell with higher-order rules along each move (about 2x the cost of 0 on the same grid, 2-4x smaller errors; ECF's same-characteristic layer only, others run 0; docs/fmu.md)".into(),
+        description: "how a step advances the bristles (the start value 0 means 'not set': the scheme rel_tol chooses, else a configuration file's `scheme`, else the model's default: 2 for ECF, 3 for FASTSIM and Polach): 1 continuous sub-steps of up to 8 cells, one-cell pieces at the trailing edge and at the end of each step (2-4x faster than 3 at 0.1-1 ms steps on 80 x 21; its step dependence up to about 1 %, forces within 1.5 % of 3 under inputs that jump at every step), 2 cell by cell with higher-order rules along each move (about 2x the cost of 3 on the same grid, 2-4x smaller errors; ECF's same-characteristic layer only, others run 3; docs/fmu.md), 3 cell by cell (the first-order reference, independent of the communication step within 0.5 %)".into(),
         start: Start::Integer(0),
         min: Some(0.0),
-        max: Some(2.0),
+        max: Some(3.0),
         slot: Slot::Scheme,
     });
     for info in effects::CATALOGUE {

@@ -52,9 +52,27 @@ fn a_version_4_state_loads_and_continues() {
     assert_eq!(snap.settings.geo, want.settings.geo);
     assert_eq!(snap.inputs, want.inputs);
     assert_eq!(snap.time.to_bits(), want.time.to_bits());
+    // the same configuration, but for its scheme: a state of version 6 or older ran cell
+    // by cell, this build's ECF default is the higher-order rules (the elastic-unloading
+    // layer here takes the cell-by-cell rules under either)
+    let (old_cfg, now_cfg) = (
+        snap.cfg.as_ref().expect("cfg"),
+        want.cfg.as_ref().expect("cfg"),
+    );
     assert_eq!(
-        snap.cfg.as_ref().map(|c| c.to_json()),
-        want.cfg.as_ref().map(|c| c.to_json())
+        (old_cfg.scheme, now_cfg.scheme),
+        (
+            creep_core::engine::Scheme::CellsMarch,
+            creep_core::engine::Scheme::CellsHigher
+        )
+    );
+    assert_eq!(
+        old_cfg.to_json(),
+        creep_core::Config {
+            scheme: old_cfg.scheme,
+            ..now_cfg.clone()
+        }
+        .to_json()
     );
     let mut old = Instance::new("old", None, false);
     assert_eq!(old.set_state(&snap), Status::Ok);

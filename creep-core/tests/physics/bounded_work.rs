@@ -66,6 +66,7 @@ fn continuous_scheme_follows_the_cell_by_cell_reference() {
         let mut cont = Contact::new(&cfg).unwrap();
         cont.set_scheme(Scheme::Continuous);
         let mut cells = Contact::new(&cfg).unwrap();
+        cells.set_scheme(Scheme::CellsMarch);
         let i0 = vectron(0.01, 10.0);
         cont.steady(&i0).unwrap();
         cells.steady(&i0).unwrap();

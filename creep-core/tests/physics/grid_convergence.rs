@@ -1,4 +1,4 @@
-//! The default grid is within 1 % of a 4x refined grid over 0.1 %-30 % creepage; dry's fine grids do not drift; transient results converge under time-step refinement.
+//! The default grid and scheme are within 1 % of a 4x refined grid over 0.1 %-30 % creepage at 5-30 m/s; dry's fine grids do not drift; transient results converge under time-step refinement.
 use crate::common::*;
 use creep_core::{config::DEFAULT_GRID, engine::Scheme, Model};
 
@@ -7,7 +7,8 @@ fn default_grid_within_1_percent_of_4x_refined() {
     for name in ["table4.1", "fastsim", "dry", "wet"] {
         let base = preset(name);
         let fine = with_grid(base.clone(), 4 * DEFAULT_GRID.nx, 4 * DEFAULT_GRID.ny);
-        for v in [5.0, 20.0] {
+        // 30 m/s: wet's bad corner, 1.19 % off on the first-order `cells` rules (step 11)
+        for v in [5.0, 20.0, 30.0] {
             for c in [0.001, 0.003, 0.01, 0.03, 0.1, 0.3] {
                 let f0 = f_of(&base, c, v);
                 let f1 = f_of(&fine, c, v);
@@ -78,15 +79,18 @@ fn dry_fine_grids_do_not_drift_with_the_release_weight() {
 /// shorter than about 25 um the bristle dropped back to elastic for one cell and yielded again
 /// higher (dry, 20 m/s, c_x 1.06 %, 7 strips: f +1.2 % from 320 to 640 cells), and the sliding
 /// zone lost heat (wet, 30 m/s, c_x 1 %: the T_max rise fell from 320 cells on, by 0.4 K from
-/// 640 to 1280). Now f, P_fric and T_max converge: on 160, 320, 640 and 1280 cells per strip
-/// the successive differences keep their sign and shrink.
+/// 640 to 1280). Now f, P_fric and T_max converge under the cell-by-cell rules (whose step
+/// 10 this is; the higher-order rules' f is converged there to 1e-4, its differences
+/// alternate): on 160, 320, 640 and 1280 cells per strip the successive differences keep
+/// their sign and shrink.
 #[test]
 fn fine_grids_converge_where_bristles_ride_on_the_yield_surface() {
     for (name, v, cx) in [("dry", 20.0, 0.0106), ("wet", 30.0, 0.01)] {
         let r: Vec<[f64; 3]> = [160, 320, 640, 1280]
             .iter()
             .map(|&nx| {
-                let o = steady(&with_grid(preset(name), nx, 7), &vectron(cx, v));
+                let cfg = with_scheme(with_grid(preset(name), nx, 7), Scheme::CellsMarch);
+                let o = steady(&cfg, &vectron(cx, v));
                 [o.f, o.p_fric, o.t_max]
             })
             .collect();

@@ -118,7 +118,12 @@ fn memoised_fit_without_uncertainties_gives_the_same_fit() {
 #[test]
 fn diagnosis_does_not_depend_on_the_thread_count() {
     let data = humid();
-    let cfg = with_grid(preset("dry"), 10, 5);
+    // cell by cell: on 10x5 under ECF's default higher-order rules the best model is at the
+    // data's noise and the search of formula forms, part of what is compared, does not run
+    let cfg = creep_core::Config {
+        scheme: creep_core::engine::Scheme::CellsMarch,
+        ..with_grid(preset("dry"), 10, 5)
+    };
     let one = diagnose(&cfg, &data, 1, &|_| {}).unwrap();
     let three = diagnose(&cfg, &data, 3, &|_| {}).unwrap();
     // everything but the wall time the search of formula forms took (it runs here: on this

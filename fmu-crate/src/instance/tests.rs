@@ -236,11 +236,11 @@ fn rel_tol_runs_on_the_grid_and_scheme_the_table_gives_and_logs_them() {
 #[test]
 fn rel_tol_off_and_explicit_settings_keep_the_grid() {
     let preset = default_grid();
-    // off: the preset's grid
+    // off: the preset's grid and ECF's default scheme, the higher-order rules
     let (mut i, st, _) = with_tol(0.0, 5.0, &[]);
     assert_eq!(st, Status::Ok);
     assert_eq!(i.get_integer(vr("nx")), Ok(preset.0));
-    assert_eq!(i.get_integer(vr("scheme")), Ok(0));
+    assert_eq!(i.get_integer(vr("scheme")), Ok(2));
     // explicit nx, ny override a loose tolerance that would choose another grid
     let loose = creep_core::tolerance::choose(0.5, 5.0, None, table41()).expect("c");
     assert_ne!((loose.nx, loose.ny), (80, 7));
@@ -394,7 +394,7 @@ fn the_default_rel_tol_runs_in_real_time_at_20_m_s_and_an_explicit_grid_turns_it
         assert_eq!(i.enter_initialization(), Status::Ok);
         assert_eq!(i.exit_initialization(), Status::Ok, "{:?}", i.take_logs());
         assert_eq!(i.get_integer(vr("nx")), Ok(nx));
-        assert_eq!(i.get_integer(vr("scheme")), Ok(0));
+        assert_eq!(i.get_integer(vr("scheme")), Ok(2));
         assert_eq!(i.get_real(vr("rel_tol")), Ok(DEFAULT_REL_TOL));
         assert!(i.take_logs().iter().all(|l| !l.text.contains("rel_tol")));
     }
@@ -482,15 +482,18 @@ fn a_configuration_file_with_a_grid_turns_the_default_rel_tol_off() {
 
 /// A configuration file's `scheme` is the one the model runs while the parameter `scheme` is
 /// at its start value (which then reads back the file's), and travels with a serialized state
-/// into a fresh instance; a parameter set to another scheme overrides it.
+/// into a fresh instance; a parameter set to another scheme overrides it. A file that names
+/// no scheme runs ECF's default, the higher-order rules (2).
 #[test]
 fn a_configuration_files_scheme_runs_unless_the_parameter_sets_another() {
     let dir = std::env::temp_dir().join(format!("ecf-file-scheme-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("dir");
     let (ho, plain) = (dir.join("ho.json"), dir.join("plain.json"));
+    let cells_file = dir.join("cells.json");
     let grid = r#""preset": "dry", "grid": {"nx": 20, "ny": 5}"#;
     std::fs::write(&ho, format!(r#"{{{grid}, "scheme": "cells-ho"}}"#)).expect("w");
     std::fs::write(&plain, format!("{{{grid}}}")).expect("w");
+    std::fs::write(&cells_file, format!(r#"{{{grid}, "scheme": "cells"}}"#)).expect("w");
     let run = |file: &std::path::Path, scheme: Option<i32>| {
         let scheme: Vec<(&str, i32)> = scheme.map(|s| ("scheme", s)).into_iter().collect();
         let mut i = initialized_from(file, &scheme);
@@ -511,9 +514,13 @@ fn a_configuration_files_scheme_runs_unless_the_parameter_sets_another() {
     assert_eq!(code, Ok(2));
     let (code, set, _) = run(&plain, Some(2));
     assert_eq!((code, &set), (Ok(2), &from_file));
-    let (code, cells, _) = run(&plain, None);
-    assert_eq!(code, Ok(0));
+    let (code, default, _) = run(&plain, None);
+    assert_eq!((code, &default), (Ok(2), &from_file));
+    let (code, cells, _) = run(&cells_file, None);
+    assert_eq!(code, Ok(3));
     assert_ne!(cells, from_file);
+    let (code, set, _) = run(&plain, Some(3));
+    assert_eq!((code, &set), (Ok(3), &cells));
     let (code, continuous, _) = run(&ho, Some(1));
     assert_eq!(code, Ok(1));
     // the initialization's log names the scheme that runs, not only the file's

@@ -35,6 +35,12 @@ pub fn with_grid(mut cfg: Config, nx: usize, ny: usize) -> Config {
     cfg
 }
 
+/// `cfg` with the scheme `s` in place of its own (ECF's default is `cells-ho`).
+pub fn with_scheme(mut cfg: Config, s: creep_core::engine::Scheme) -> Config {
+    cfg.scheme = s;
+    cfg
+}
+
 /// Contact and grid of the reference FASTSIM.
 pub struct RefCase {
     pub a: f64,
