@@ -171,12 +171,16 @@ fn steady_table(quick: bool) {
 
 fn transient_table(quick: bool) {
     let sim = if quick { 0.01 } else { 0.1 };
-    println!("== transient ECF, one contact, preset dry, grid 80x21, c_x = 15 % (+-1 % wobble), F_N = 110 kN, {sim} s simulated; default scheme CellsMarch, opt-in Continuous (docs/model.md section 3)");
+    println!("== transient ECF, one contact, preset dry, grid 80x21, c_x = 15 % (+-1 % wobble), F_N = 110 kN, {sim} s simulated; ECF's default scheme {:?} (issue 24 step 11), the first-order CellsMarch and the opt-in Continuous (docs/model.md section 3)", Scheme::default_for(creep_core::ModelKind::Ecf));
     println!(
         "{:>8} {:>8} {:>12} {:>14} {:>16}",
         "v_m/s", "dt_ms", "scheme", "us/step(med)", "wall/simulated"
     );
-    for scheme in [Scheme::CellsMarch, Scheme::Continuous] {
+    for scheme in [
+        Scheme::default_for(creep_core::ModelKind::Ecf),
+        Scheme::CellsMarch,
+        Scheme::Continuous,
+    ] {
         for (v, dt) in [(5.0, 1e-3), (20.0, 1e-4), (30.0, 2.5e-4)] {
             let mut m = model("dry", 80, 21);
             if let Model::Bristle(c) = &mut m {

@@ -95,7 +95,7 @@ impl Scheme {
 
     /// The scheme a model runs when its configuration names none: `cells-ho` for ECF (on the
     /// default grid 80x21 its steady curves are within 0.2 % of 640x168 for dry, table4.1
-    /// and wet at 5-30 m/s where `cells` was up to 1 %, for about 10 % more cost in steady
+    /// and wet at 5-30 m/s where `cells` was up to 1.2 %, for about 10 % more cost in steady
     /// curves and twice the cost in time steps; docs/model.md section 9), `cells` for
     /// FASTSIM and Polach (their layers take the cell-by-cell rules in any case).
     pub fn default_for(model: crate::ModelKind) -> Scheme {
