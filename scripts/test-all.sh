@@ -4,18 +4,27 @@
 # tests (FMU through fmpy and fmutool, drive-train demo).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Each phase prints its wall time (s) so a slow CI run shows where the time went.
+t_phase=$SECONDS
+phase() {
+  echo "   (previous phase: $((SECONDS - t_phase)) s; total $SECONDS s)" >&2
+  t_phase=$SECONDS
+  echo "== $1" >&2
+}
+echo "== setup (scripts/setup.sh --tests)" >&2
 bash scripts/setup.sh --tests
-echo "== cargo fmt --check" >&2
+phase "cargo fmt --check"
 cargo fmt --all --check
-echo "== cargo clippy -D warnings" >&2
+phase "cargo clippy -D warnings"
 cargo clippy -q --workspace --all-targets -- -D warnings
-echo "== build the FMU (dist/ecf_contact.fmu)" >&2
+phase "build the FMU (dist/ecf_contact.fmu)"
 bash scripts/build-fmu.sh >/dev/null
-echo "== cargo test (release)" >&2
+phase "cargo test (release)"
 cargo test -q --release --workspace
-echo "== benchmark smoke run (scripts/bench.sh --quick; figures only, no assertions)" >&2
+phase "benchmark smoke run (scripts/bench.sh --quick; figures only, no assertions)"
 bash scripts/bench.sh --quick
-echo "== pytest tests-py" >&2
-.venv/bin/python -m pytest -q tests-py
-echo "== drive-train frequency regression (python -m drivetrain_demo regress drivetrain-demo/baselines/ci.json)" >&2
+phase "pytest tests-py"
+.venv/bin/python -m pytest -q --durations=15 tests-py
+phase "drive-train frequency regression (python -m drivetrain_demo regress drivetrain-demo/baselines/ci.json)"
 PYTHONPATH=drivetrain-demo .venv/bin/python -m drivetrain_demo regress drivetrain-demo/baselines/ci.json --quiet
+phase "done"
