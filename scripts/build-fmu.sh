@@ -98,7 +98,7 @@ members = ["fmu", "cli"]
 
 [profile.release]
 debug = false
-lto = "thin"
+lto = false
 codegen-units = 4
 panic = "unwind"
 TOML
