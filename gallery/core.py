@@ -167,6 +167,7 @@ def settling(t: np.ndarray, f: np.ndarray, window: float, tol: float = 0.02) -> 
 # demo from its source folder too)
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "drivetrain-demo"))
 from drivetrain_demo.analysis import loop_area  # noqa: E402  (signed area, closes the loop)
+from drivetrain_demo.scenarios import DEFAULT_GRID_TEXT as DEMO_GRID  # noqa: E402,F401  (the demo's grid)
 
 
 def self_crossings(x: np.ndarray, y: np.ndarray) -> list[tuple[float, float]]:

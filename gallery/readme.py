@@ -5,7 +5,7 @@ the same run wrote. tests-py/test_gallery.py re-renders the committed numbers.js
 compares with the committed README, and recomputes the numbers."""
 from __future__ import annotations
 
-from .core import Check
+from .core import DEMO_GRID, Check
 from .registry import FIGURES, SECTIONS
 
 
@@ -31,7 +31,7 @@ def settings_table(S: dict) -> str:
         ("creep curves", f"0, {S['curve_low_n']} geometric points 0.01-1 %, {S['curve_high_n'] - 1} linear points 1-50 %"),
         ("creepage steps", f"time step {S['step_dt_ms']} ms, {S['step_duration_ms']} ms after the step"),
         ("periodic creepage", f"{S['sine_steps_per_cycle']} time steps per period, {S['sine_cycles']} periods"),
-        ("drive-train demo", f"ECF preset {D['preset']}; " + ", ".join(f"{k} {v}" for k, v in D.items() if k != "preset" and v) if any(v for k, v in D.items() if k != "preset") else f"ECF preset {D['preset']}; the demo's defaults (grid 16x9, 0.25 ms, step 2.5 s, ramp 8 s, sine 10 periods)"),
+        ("drive-train demo", f"ECF preset {D['preset']}; " + ", ".join(f"{k} {v}" for k, v in D.items() if k != "preset" and v) if any(v for k, v in D.items() if k != "preset") else f"ECF preset {D['preset']}; the demo's defaults (grid {DEMO_GRID}, 0.25 ms, step 2.5 s, ramp 8 s, sine 10 periods)"),
         ("3BL law curves", f"{S['material_n']} points over 0-1.5 mm"),
     ]
     return "| setting | value |\n|---|---|\n" + "\n".join(f"| {a} | {cell(b)} |" for a, b in rows)

@@ -1,6 +1,7 @@
 """Drive-train co-simulation with the contact FMU (one FMU2Slave instance per wheel).
 
-CI settings (documented in docs/drivetrain.md): bristle grid 16x9 (FMU parameters nx, ny),
+CI settings (documented in docs/drivetrain.md): the demo's bristle grid scenarios.DEFAULT_GRID, 14x7
+(FMU parameters nx, ny; the FMU's default scheme),
 communication step h = 0.25 ms, step scenario of T_STEP simulated seconds, transient ECF.
 Every check compares simulation output with a physical expectation or with the linear
 analysis; nothing here is a stored result.
@@ -17,7 +18,7 @@ sys.path.insert(0, str(ROOT / "drivetrain-demo"))
 
 from drivetrain_demo import params, scenarios  # noqa: E402
 
-GRID = (16, 9)
+GRID = scenarios.DEFAULT_GRID
 H = 2.5e-4
 T_STEP = 2.5  # s: at 5 m/s the limit cycle is reached ~1.7 s after the step
 T_STEP_10 = 3.5  # s: at 10 m/s the growth rate is ~1/6 of that at 5 m/s; limit cycle after ~2.5 s
@@ -103,7 +104,7 @@ def test_communication_step_halved_frequency_within_1_percent(contact_fmu):
 
 
 def test_frequency_insensitive_to_bristle_grid(contact_fmu):
-    """The CI grid 16x9 against 10x5 (and, in docs/drivetrain.md, up to 40x21): frequency within 1 %."""
+    """The CI grid (14x7) against 10x5 (and, in docs/drivetrain.md, up to 80x21): frequency within 1 %."""
     a, _ = run(contact_fmu)
     b, _ = run(contact_fmu, grid=(10, 5))
     assert b["dominant_frequency_hz"] == pytest.approx(a["dominant_frequency_hz"], rel=0.01)

@@ -114,12 +114,12 @@ def _grid(grid):
         try:
             nx, ny = (int(x) for x in grid.lower().split("x"))
         except ValueError:
-            raise ConfigError(f"grid {grid!r}: expected NXxNY, e.g. 16x9") from None
+            raise ConfigError(f"grid {grid!r}: expected NXxNY, e.g. 14x7") from None
         return nx, ny
     return tuple(int(x) for x in grid)
 
 
-def run_config(scenario="step", contact="ecf", *, preset=None, v_mps=5.0, t_end_s=None, h_ms=0.25, grid=(16, 9),
+def run_config(scenario="step", contact="ecf", *, preset=None, v_mps=5.0, t_end_s=None, h_ms=0.25, grid=scenarios.DEFAULT_GRID,
                fmu=None, fmu_params=None, transient=True, cx=None, sine=None, out=None, save_every=1,
                progress=False, contact_threads=True, contact_kind="fmu", overrides=None) -> scenarios.RunConfig:
     """The scenarios.RunConfig for the arguments of `simulate` (validated)."""
@@ -138,7 +138,7 @@ def run_config(scenario="step", contact="ecf", *, preset=None, v_mps=5.0, t_end_
 
 
 def simulate(scenario: str = "step", contact: str = "ecf", *, params=None, overrides=None, preset=None,
-             v_mps: float = 5.0, t_end_s: float | None = None, h_ms: float = 0.25, grid=(16, 9), fmu=None,
+             v_mps: float = 5.0, t_end_s: float | None = None, h_ms: float = 0.25, grid=scenarios.DEFAULT_GRID, fmu=None,
              fmu_params=None, transient: bool = True, cx: float | None = None, sine=None, out=None,
              save_every: int = 1, plot: bool = False, progress: bool = False, contact_threads: bool = True,
              contact_kind: str = "fmu") -> Result:
@@ -151,7 +151,7 @@ def simulate(scenario: str = "step", contact: str = "ecf", *, params=None, overr
     overrides: {name: value} replacing drive-train/controller/contact values (SI), like --set;
     preset: contact condition (scenarios.CONDITIONS); FASTSIM gets a condition-matched mu;
     v_mps: vehicle speed, m/s; t_end_s: simulated time, s (None: scenario default; too short raises);
-    h_ms: communication step, ms; grid: bristle grid (nx, ny) or "16x9", None for the FMU's own;
+    h_ms: communication step, ms; grid: bristle grid (nx, ny) or "14x7" (default scenarios.DEFAULT_GRID), None for the FMU's own;
     fmu: FMU path (None: $ECF_FMU_PATH, $ECF_CONTACT_FMU, dist/ecf_contact.fmu);
     fmu_params: further FMU parameters {name: value}; transient: transient contact model;
     out: directory for CSV/JSON (and PNG when plot) files, None writes nothing;
@@ -170,7 +170,7 @@ def simulate(scenario: str = "step", contact: str = "ecf", *, params=None, overr
 
 
 def modal(contact: str = "ecf", *, params=None, overrides=None, preset=None, v_mps: float = 5.0, cx: float = 0.15,
-          grid=(16, 9), fmu=None, fmu_params=None, contact_kind: str = "fmu") -> ModalResult:
+          grid=scenarios.DEFAULT_GRID, fmu=None, fmu_params=None, contact_kind: str = "fmu") -> ModalResult:
     """Modal analysis of the free drive-train and linear stability (seed Eq. 6.4) at speed v_mps
     (m/s) and creepage cx (dimensionless) on both wheels, the contact linearized along the steady
     curve of `contact` (model) under `preset`. Arguments as for `simulate`."""

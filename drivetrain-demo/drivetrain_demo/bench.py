@@ -17,6 +17,7 @@ import numpy as np
 
 from . import contact, cosim
 from .params import Params
+from .scenarios import DEFAULT_GRID
 
 
 class _NullContact:
@@ -38,7 +39,7 @@ def _per_step(fn, n):
     return (time.perf_counter() - t0) / n
 
 
-def run_bench(p: Params, fmu_path, grid=(16, 9), h=2.5e-4, v=5.0, t_sim=1.0, model="ecf"):
+def run_bench(p: Params, fmu_path, grid=DEFAULT_GRID, h=2.5e-4, v=5.0, t_sim=1.0, model="ecf"):
     n = int(round(t_sim / h))
     out = {"grid": list(grid), "h_s": h, "v_mps": v, "steps_per_simulated_s": 1.0 / h}
     # 1. loop with null contacts

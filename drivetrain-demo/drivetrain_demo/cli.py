@@ -76,8 +76,8 @@ def build_parser():
     ap.add_argument("--t-end", type=_positive("--t-end"), default=None,
                     help="simulated time, s [default: step 2.5, ramp 8, sine 10 periods]")
     ap.add_argument("--grid", type=_grid, default=None,
-                    help="bristle grid NXxNY of the contact FMU (e.g. 16x9) [default: 16x9]")
-    ap.add_argument("--fmu-default-grid", action="store_true", help="use the FMU's own default grid instead of 16x9")
+                    help=f"bristle grid NXxNY of the contact FMU [default: {scenarios.DEFAULT_GRID_TEXT}]")
+    ap.add_argument("--fmu-default-grid", action="store_true", help=f"use the FMU's own default grid instead of {scenarios.DEFAULT_GRID_TEXT}")
     ap.add_argument("--contact", choices=("auto", "fmu", "curve"), default="auto",
                     help="fmu: contact FMU; curve: steady-curve stand-in from `ecf curve` (no contact dynamics); "
                          "auto: FMU if found [default: auto]")
@@ -182,7 +182,7 @@ def regress_main(argv):
 def _main(argv):
     a = build_parser().parse_args(argv)
     p = apply_overrides(params_mod.load(a.params), a.set)
-    grid = None if a.fmu_default_grid else (a.grid or (16, 9))
+    grid = None if a.fmu_default_grid else (a.grid or scenarios.DEFAULT_GRID)
     if a.cx is not None and not (0.0 <= a.cx <= 1.0):
         raise scenarios.ConfigError(f"--cx {a.cx}: creepage must be in [0, 1] (dimensionless, 0.15 = 15 %)")
     models = ("ecf", "fastsim") if a.model == "both" else (a.model,)

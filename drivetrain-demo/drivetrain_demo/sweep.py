@@ -118,7 +118,7 @@ def load_sweep(path) -> dict:
     spec["analysis"] = an
     for key, default, kind in (("t_end_s", None, float), ("h_ms", 0.25, float), ("cx", scenarios.STEP_TARGET, float),
                                ("save_every", 1, int), ("contact_threads", False, bool), ("transient", True, bool),
-                               ("grid", "16x9", str)):
+                               ("grid", scenarios.DEFAULT_GRID_TEXT, str)):
         v = raw.get(key, default)
         if v is not None and not isinstance(v, kind) and not (kind is float and isinstance(v, int)):
             raise _err(path, f"{key} = {v!r}: expected a {kind.__name__}")
