@@ -96,11 +96,7 @@ print(p["name"], lib[0]["name"].replace("-", "_"))' "$EFF/Cargo.toml" <<<"$meta"
 resolver = "2"
 members = ["fmu", "cli"]
 
-[profile.release]
-debug = false
-lto = false
-codegen-units = 4
-panic = "unwind"
+$(sed -n '/^\[profile\.release\]/,/^$/p' "$ROOT/Cargo.toml")
 TOML
   cat > "$W/fmu/Cargo.toml" <<TOML
 [package]

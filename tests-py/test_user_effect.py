@@ -23,7 +23,7 @@ def built(repo_root, fmu_path):
     """(ecf, fmu) with examples/user-effect linked in (fmu_path first: the shared build).
     Linux only: these tests run the FMU through fmpy here; the Windows and macOS builds of
     `--effects` go through the same cross() of scripts/build-fmu.sh as the shipped FMU, which
-    the session's fmu_path builds and tests/test_platforms.py checks (this saves CI about a
+    the session's fmu_path builds and tests-py/test_platforms.py checks (this saves CI about a
     minute of three cross links)."""
     r = subprocess.run(["bash", "scripts/build-fmu.sh", "--linux-only", "--effects", "examples/user-effect"],
                        cwd=repo_root, capture_output=True, text=True)
