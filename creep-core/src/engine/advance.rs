@@ -7,6 +7,13 @@ use crate::bristle::{self, BristleState};
 use crate::material::NodeP;
 use crate::thermal::{StepFactors, N_KERNEL};
 
+/// The edge of the contact a graded move ends at ([`Contact::graded_moves`]).
+#[derive(Clone, Copy)]
+enum Edge {
+    Leading,
+    Trailing,
+}
+
 /// Entries of the kernel-factor cache (distinct sub-step lengths kept).
 const FAC_CACHE: usize = 8;
 
@@ -154,53 +161,111 @@ impl Contact {
         let a = self.patch.a;
         let xi0 = xi_end + kin.dist / a;
         if self.ho && xi0 >= self.ell[j] - 1e-12 && kin.h > 0.0 {
-            let dxi = 2.0 * self.ell[j] / self.nx as f64;
-            let frac = |i: usize| {
-                let f = i as f64 / EDGE_SUB as f64;
-                f * f
-            };
-            // the sub-moves' kernel factors from one exp and expm1 per term
-            let heat = self.r.temperature && kin.heat;
-            let graded = heat.then(|| self.kernel.graded_factors::<EDGE_SUB>(kin.h));
-            // sub-move i starts where i - 1 ended: its start node is that one's end node
-            let mut np_prev: Option<NodeP> = None;
-            for i in 1..=EDGE_SUB {
-                let df = frac(i) - frac(i - 1);
-                let (h, d) = (kin.h * df, kin.dist * df);
-                let ki = Kin {
-                    h,
-                    dist: d,
-                    self_c: if kin.heat {
-                        kin.alpha_c * 2.0 * h.sqrt()
-                    } else {
-                        0.0
-                    },
-                    ..*kin
-                };
-                let fi = match &graded {
-                    Some(g) => g[i - 1],
-                    None => StepFactors::identity(h),
-                };
-                let xe = if i == EDGE_SUB {
-                    xi_end
-                } else {
-                    xi0 - frac(i) * kin.dist / a
-                };
-                let npi = if i == EDGE_SUB {
-                    *np
-                } else {
-                    self.r.node_p(
-                        &self.patch,
-                        xe.max(-self.ell[j] + super::grid::TRAILING_NODE * dxi),
-                        self.eta[j],
-                    )
-                };
-                self.move_bristle_one(j, xe, &npi, np_prev.as_ref(), &ki, &fi, s, acc);
-                np_prev = self.start_cache.then_some(npi);
-            }
+            self.graded_moves(j, xi0, xi_end, Some(np), kin, Edge::Leading, s, acc);
             return;
         }
+        // the move that ends at the trailing edge under the higher-order rules, with heat:
+        // the temperature there from sub-moves graded toward the edge (below)
+        let dxi = 2.0 * self.ell[j] / self.nx as f64;
+        let trailing = self.ho
+            && self.r.temperature
+            && kin.heat
+            && kin.h > 0.0
+            && xi_end <= -self.ell[j] + 1e-9 * dxi;
+        let start = trailing.then(|| (*s, *acc));
         self.move_bristle_one(j, xi_end, np, np0_cached, kin, fac, s, acc);
+        if let Some((mut s0, mut acc0)) = start {
+            self.graded_moves(
+                j,
+                xi0,
+                xi_end,
+                None,
+                kin,
+                Edge::Trailing,
+                &mut s0,
+                &mut acc0,
+            );
+            s.temp = s0.temp;
+        }
+    }
+
+    /// The move of strip `j` from `xi0` over `kin.dist` to `xi_end`, at an edge of the contact, as
+    /// [`EDGE_SUB`] sub-moves graded toward that edge, where the pressure goes like the square
+    /// root of the distance from it. *Leading*: the sub-moves end at (i/EDGE_SUB)^2 of the
+    /// move, the last one on the end node `np_end`; the layer yields and heats within the
+    /// first cell (docs/model.md section 9, step 8). *Trailing*: they end at
+    /// 1 - (1 - i/EDGE_SUB)^2 of it, the last one's material [`super::grid::TRAILING_NODE`] of
+    /// its own length inside the edge; the falling pressure lets the layer release its stress
+    /// within a small part of the last cell, and that release heats the bristle to the
+    /// contact's highest temperature at low creepage (the caller keeps only the temperature:
+    /// docs/model.md section 9, issue 24 step 13). The sub-moves' kernel factors come from one
+    /// exp and expm1 per term (the two gradings have the same sub-move lengths, in reverse).
+    #[allow(clippy::too_many_arguments)]
+    fn graded_moves(
+        &self,
+        j: usize,
+        xi0: f64,
+        xi_end: f64,
+        np_end: Option<&NodeP>,
+        kin: &Kin,
+        edge: Edge,
+        s: &mut BristleState,
+        acc: &mut [f64; N_KERNEL],
+    ) {
+        let (a, n) = (self.patch.a, EDGE_SUB);
+        let dxi = 2.0 * self.ell[j] / self.nx as f64;
+        let frac = |i: usize| match edge {
+            Edge::Leading => {
+                let f = i as f64 / n as f64;
+                f * f
+            }
+            Edge::Trailing => {
+                let f = 1.0 - i as f64 / n as f64;
+                1.0 - f * f
+            }
+        };
+        let heat = self.r.temperature && kin.heat;
+        let graded = heat.then(|| self.kernel.graded_factors::<EDGE_SUB>(kin.h));
+        // sub-move i starts where i - 1 ended: its start node is that one's end node
+        let mut np_prev: Option<NodeP> = None;
+        for i in 1..=n {
+            let df = frac(i) - frac(i - 1);
+            let (h, d) = (kin.h * df, kin.dist * df);
+            let ki = Kin {
+                h,
+                dist: d,
+                self_c: if kin.heat {
+                    kin.alpha_c * 2.0 * h.sqrt()
+                } else {
+                    0.0
+                },
+                ..*kin
+            };
+            // sub-move lengths (2k - 1)/n^2 of the move: the k-th of the leading grading
+            let fi = match (&graded, edge) {
+                (Some(g), Edge::Leading) => g[i - 1],
+                (Some(g), Edge::Trailing) => g[n - i],
+                (None, _) => StepFactors::identity(h),
+            };
+            let xe = if i == n {
+                xi_end
+            } else {
+                xi0 - frac(i) * kin.dist / a
+            };
+            let npi = match (np_end, i == n) {
+                (Some(np), true) => *np,
+                _ => {
+                    let inside = match edge {
+                        Edge::Leading => super::grid::TRAILING_NODE * dxi,
+                        Edge::Trailing => super::grid::TRAILING_NODE * d / a,
+                    };
+                    self.r
+                        .node_p(&self.patch, xe.max(-self.ell[j] + inside), self.eta[j])
+                }
+            };
+            self.move_bristle_one(j, xe, &npi, np_prev.as_ref(), &ki, &fi, s, acc);
+            np_prev = self.start_cache.then_some(npi);
+        }
     }
 
     /// One move of [`Self::move_bristle_with`] (no sub-moves).
