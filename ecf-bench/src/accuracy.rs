@@ -29,6 +29,13 @@
 //! `creep-core/data/accuracy.csv` ([`CSV_PATH`]), which `creep_core::tolerance` reads at
 //! compile time: regenerate it with `bash scripts/bench.sh --only accuracy`, never by hand.
 //! `ECF_ACCURACY_CSV=path` writes it elsewhere instead (with `--quick` too).
+//!
+//! `ECF_ACCURACY_COSTS_FROM=path` keeps the costs of an earlier table: every row's
+//! `wall_per_sim` is taken from the row of that file with the same preset, case, grid and
+//! scheme (a row missing there ends the run), and the header says so. For re-measuring the
+//! errors after a change that leaves the costs within their noise, on a machine whose speed
+//! drifted since (the costs are wall times: on 2026-11-29 every scheme, the unchanged ones
+//! too, ran 1.37-1.43x slower than on 2026-11-26).
 use creep_core::engine::Scheme;
 use creep_core::{Config, Contact, Grid, Inputs};
 use std::time::Instant;
@@ -269,7 +276,38 @@ pub fn table(quick: bool, finest: usize) {
     println!("== accuracy per cost: errors against the extrapolated limit, % of its largest value (F_x, T_max - T_bulk, P_fric); wall time / simulated time on one thread");
     let mut rows = Vec::new();
     // the commit and the time the measurement starts on (later commits during the run do not count)
-    let measured = format!("commit {} at {} UTC", git_commit(), utc_now());
+    let mut measured = format!("commit {} at {} UTC", git_commit(), utc_now());
+    let kept = std::env::var("ECF_ACCURACY_COSTS_FROM").ok().map(|path| {
+        let (rows, when) = earlier_costs(&path).unwrap_or_else(|e| {
+            eprintln!("ecf-bench: ECF_ACCURACY_COSTS_FROM: {e}");
+            std::process::exit(1);
+        });
+        measured = format!("{measured}; errors from this run, costs (wall_per_sim) kept from the table measured on {when} ({path})");
+        rows
+    });
+    let cost_of = |case: &Case, nx: usize, ny: usize, scheme: Scheme, measured_cost: f64| {
+        let Some(rows) = &kept else {
+            return measured_cost;
+        };
+        rows.iter()
+            .find(|r| {
+                r.preset == case.preset
+                    && r.kind == case.kind_name()
+                    && r.v == case.v
+                    && (r.dt_ms - case.dt * 1e3).abs() < 1e-9
+                    && (r.nx, r.ny) == (nx, ny)
+                    && r.scheme == scheme
+            })
+            .map(|r| r.cost)
+            .unwrap_or_else(|| {
+                eprintln!(
+                    "ecf-bench: ECF_ACCURACY_COSTS_FROM has no row for {} {nx}x{ny} {}",
+                    case.name(),
+                    scheme.name()
+                );
+                std::process::exit(1);
+            })
+    };
     for case in &cases {
         let sim = case.steps() as f64 * case.dt;
         let cells: Vec<Response> = grids
@@ -309,7 +347,8 @@ pub fn table(quick: bool, finest: usize) {
                 };
                 let e: Vec<(f64, f64, f64)> = (0..3).map(|q| errors(resp, &l, q)).collect();
                 let f = |t: (f64, f64, f64)| format!("{:.2} / {:.2} / {:.2}", t.0, t.1, t.2);
-                rows.push(csv_row(case, nx, ny, scheme, &e, resp.wall / sim, &l));
+                let cost = cost_of(case, nx, ny, scheme, resp.wall / sim);
+                rows.push(csv_row(case, nx, ny, scheme, &e, cost, &l));
                 println!(
                     "   {:>8} {:>10} {:>26} {:>26} {:>26} {:>10.2}",
                     format!("{nx}x{ny}"),
@@ -317,7 +356,7 @@ pub fn table(quick: bool, finest: usize) {
                     f(e[0]),
                     f(e[1]),
                     f(e[2]),
-                    resp.wall / sim
+                    cost
                 );
             }
         }
@@ -390,6 +429,19 @@ fn csv_text(rows: &[String], measured: &str, finest: (usize, usize)) -> String {
         s.push('\n');
     }
     s
+}
+
+/// The rows of an earlier accuracy table and the "commit ... UTC" it was measured on.
+fn earlier_costs(path: &str) -> Result<(Vec<creep_core::tolerance::Row>, String), String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {path}: {e}"))?;
+    let when = text
+        .lines()
+        .find_map(|l| l.strip_prefix("# measured on "))
+        .and_then(|l| l.split(" (start of the run)").next())
+        .ok_or_else(|| format!("{path}: no '# measured on' line"))?
+        .to_string();
+    let rows = creep_core::tolerance::parse(&text, path).map_err(|e| e.to_string())?;
+    Ok((rows, when))
 }
 
 /// The short commit hash of the working tree, with `+dirty` for uncommitted changes; `unknown` without git.

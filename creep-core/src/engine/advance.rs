@@ -172,7 +172,7 @@ impl Contact {
             && kin.heat
             && kin.h > 0.0
             && xi_end <= -self.ell[j] + 1e-9 * dxi;
-        let start = trailing.then(|| (*s, *acc));
+        let start = if trailing { Some((*s, *acc)) } else { None };
         self.move_bristle_one(j, xi_end, np, np0_cached, kin, fac, s, acc);
         if let Some((mut s0, mut acc0)) = start {
             self.graded_moves(
