@@ -164,8 +164,8 @@ impl Contact {
             self.graded_moves(j, xi0, xi_end, Some(np), kin, Edge::Leading, s, acc);
             return;
         }
-        // the move that ends at the trailing edge under the higher-order rules, with heat:
-        // the temperature there from sub-moves graded toward the edge (below)
+        // the move that ends at the trailing edge under the higher-order rules, with heat: the
+        // temperatures along it from sub-moves graded toward the edge (below)
         let dxi = 2.0 * self.ell[j] / self.nx as f64;
         let trailing = self.ho
             && self.r.temperature
@@ -174,8 +174,9 @@ impl Contact {
             && xi_end <= -self.ell[j] + 1e-9 * dxi;
         let start = if trailing { Some((*s, *acc)) } else { None };
         self.move_bristle_one(j, xi_end, np, np0_cached, kin, fac, s, acc);
+        // the trailing node's temperature: the highest the bristle reaches over its last cell
         if let Some((mut s0, mut acc0)) = start {
-            self.graded_moves(
+            s.temp = self.graded_moves(
                 j,
                 xi0,
                 xi_end,
@@ -185,7 +186,6 @@ impl Contact {
                 &mut s0,
                 &mut acc0,
             );
-            s.temp = s0.temp;
         }
     }
 
@@ -196,10 +196,11 @@ impl Contact {
     /// first cell (docs/model.md section 9, step 8). *Trailing*: they end at
     /// 1 - (1 - i/EDGE_SUB)^2 of it, the last one's material [`super::grid::TRAILING_NODE`] of
     /// its own length inside the edge; the falling pressure lets the layer release its stress
-    /// within a small part of the last cell, and that release heats the bristle to the
-    /// contact's highest temperature at low creepage (the caller keeps only the temperature:
-    /// docs/model.md section 9, issue 24 step 13). The sub-moves' kernel factors come from one
-    /// exp and expm1 per term (the two gradings have the same sub-move lengths, in reverse).
+    /// within the last cell, and that release heats the bristle to the contact's highest
+    /// temperature (the caller keeps only the temperature: docs/model.md section 9, issue 24
+    /// step 13). Returns the highest temperature at the sub-moves' ends, degC. The sub-moves'
+    /// kernel factors come from one exp and expm1 per term (the two gradings have the same
+    /// sub-move lengths, in reverse).
     #[allow(clippy::too_many_arguments)]
     fn graded_moves(
         &self,
@@ -211,7 +212,7 @@ impl Contact {
         edge: Edge,
         s: &mut BristleState,
         acc: &mut [f64; N_KERNEL],
-    ) {
+    ) -> f64 {
         let (a, n) = (self.patch.a, EDGE_SUB);
         let dxi = 2.0 * self.ell[j] / self.nx as f64;
         let frac = |i: usize| match edge {
@@ -228,6 +229,7 @@ impl Contact {
         let graded = heat.then(|| self.kernel.graded_factors::<EDGE_SUB>(kin.h));
         // sub-move i starts where i - 1 ended: its start node is that one's end node
         let mut np_prev: Option<NodeP> = None;
+        let mut peak = f64::NEG_INFINITY;
         for i in 1..=n {
             let df = frac(i) - frac(i - 1);
             let (h, d) = (kin.h * df, kin.dist * df);
@@ -264,8 +266,10 @@ impl Contact {
                 }
             };
             self.move_bristle_one(j, xe, &npi, np_prev.as_ref(), &ki, &fi, s, acc);
+            peak = peak.max(s.temp);
             np_prev = self.start_cache.then_some(npi);
         }
+        peak
     }
 
     /// One move of [`Self::move_bristle_with`] (no sub-moves).
