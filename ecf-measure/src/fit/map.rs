@@ -1,13 +1,13 @@
 //! The change of variables that keeps a fitted parameter within its bounds, where a fit starts, and when a result is stuck at a bound.
 
-/// Fractions of the interval (logistic map) from which a fit stuck at a bound, or worse than
-/// its start, is tried again; for a parameter bounded below only, the distances from the
+/// Fractions of the interval (logistic map) from which a fit stuck at a bound that does not
+/// hold its optimum, or worse than its start, is tried again; for a parameter bounded below only, the distances from the
 /// bound are the start's times 10^(-1), 10 and 100.
 pub const STARTS: [f64; 3] = [0.1, 0.5, 0.9];
 
 /// A fitted value this close to a bound (fraction of the interval, or of the start's distance
 /// from a lower bound) counts as stuck there.
-const NEAR: f64 = 1e-3;
+pub(super) const NEAR: f64 = 1e-3;
 
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Map {

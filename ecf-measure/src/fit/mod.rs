@@ -8,8 +8,10 @@
 //!
 //! A fit never ends worse than it started (issue 26): a start on (or within a thousandth of
 //! the interval of) a bound, where the change of variables has no slope, begins a little
-//! inside; a result stuck at a bound, or worse than the start, is tried again from several
-//! starts spread over the bounds ([`STARTS`]) and the best is kept; a parameter ending next
+//! inside; a result stuck at a bound is fitted again with that parameter on the bound and
+//! kept there when the data push it outward (moving it inside makes the fit worse); a
+//! result stuck at a bound that does not hold it, or worse than the start, is tried again
+//! from several starts spread over the bounds ([`STARTS`]) and the best is kept; a parameter ending next
 //! to its bound is set on the bound when that is no worse (status `at_lower_bound` /
 //! `at_upper_bound`); a best result still worse than the start is a failed fit.
 
@@ -29,7 +31,7 @@ use creep_core::effects::Effect;
 use creep_core::error::{CreepError, Result};
 use creep_core::params::P;
 use levenberg_marquardt::LevenbergMarquardt;
-use map::{Bound, Map};
+use map::{Bound, Map, NEAR};
 use nalgebra::DVector;
 use problem::Problem;
 use uncertainty::uncertainties;
@@ -37,6 +39,10 @@ use uncertainty::uncertainties;
 /// Relative difference of two CV(RMSE) values that counts as rounding: setting a parameter
 /// that is next to its bound onto the bound is kept when its CV(RMSE) is no worse by more.
 const ROUNDING: f64 = 1e-12;
+
+/// Relative rise of the CV(RMSE) that a step off a bound must exceed for the bound to count as
+/// the optimum ([`Solver::bounds_hold`]): smaller rises are a plateau, not a push outward.
+const PLATEAU: f64 = 1e-6;
 
 /// What the data say about a fitted parameter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -101,8 +107,9 @@ pub struct FitResult {
     pub evaluations: usize,
     /// Why the solver stopped (in the run kept).
     pub termination: String,
-    /// Solver runs: 1, or more when the first ended stuck at a bound or worse than its start
-    /// and the fit was tried again from spread starts ([`STARTS`]).
+    /// Solver runs: 1; 2 when the first ended stuck at a bound that holds the optimum (the
+    /// run with the parameter on the bound); more when the fit was tried again from spread
+    /// starts ([`STARTS`]).
     pub starts: usize,
 }
 
@@ -386,14 +393,33 @@ impl Solver<'_> {
             .collect()
     }
 
-    /// The first run and, when it ends stuck at a bound or `worse` than the start, the best
-    /// of it and the runs from [`STARTS`]; with the number of runs.
+    /// The first run; when it ends stuck at a bound, the run on the bound
+    /// ([`Self::polish_at_bounds`]), kept if the bound holds ([`Self::bounds_hold`]);
+    /// otherwise, or when `worse` than the start, the best of these and the runs from
+    /// [`STARTS`]; with the number of runs.
     fn best_of_starts(&self, worse: impl Fn(f64) -> bool) -> Result<(Run, usize)> {
         let free = self.free;
         let mut best = self.run(&self.s0)?;
         let mut starts = 1;
         let stuck = self.stuck_at(&best.config);
         let any_stuck = stuck.iter().any(Option::is_some);
+        if any_stuck && !worse(best.cv) {
+            // a bound that holds the optimum needs no search elsewhere: the stuck parameters
+            // on their bounds, the others fitted again there, and every stuck one pushed
+            // outward by the data (the bound's optimality condition)
+            if let Some(p) = self.polish_at_bounds(&best, &stuck)? {
+                starts += 1;
+                // no worse than the first end beyond rounding (a first end within 1e-15 of the
+                // bound can be better in its last bits, as in `onto_bounds`)
+                let holds = p.cv <= best.cv * (1.0 + ROUNDING) && self.bounds_hold(&p, &stuck);
+                if p.cv < best.cv {
+                    best = p;
+                }
+                if holds {
+                    return Ok((best, starts));
+                }
+            }
+        }
         if any_stuck || worse(best.cv) {
             // again from starts spread over the bounds: the stuck parameters alone (the others
             // from where the first run left them), or all of them when the result is worse
@@ -428,6 +454,91 @@ impl Solver<'_> {
             }
         }
         Ok((best, starts))
+    }
+
+    /// The fit with each stuck parameter (`stuck`) set onto its bound and the others run again
+    /// from where `first` left them (the stuck ones alone: no run, the model at the bounds);
+    /// None where the model fails there.
+    fn polish_at_bounds(&self, first: &Run, stuck: &[Option<Bound>]) -> Result<Option<Run>> {
+        let mut cfg = first.config.clone();
+        let (mut free, mut maps, mut s0) = (Vec::new(), Vec::new(), Vec::new());
+        for (k, id) in self.free.iter().enumerate() {
+            match stuck[k] {
+                Some(b) => {
+                    let (lo, hi) = id.bounds(self.cfg);
+                    let v = if b == Bound::Lower { lo } else { hi };
+                    if !v.is_finite() {
+                        return Ok(None);
+                    }
+                    id.set(&mut cfg, v)?;
+                }
+                None => {
+                    free.push(*id);
+                    maps.push(self.maps[k]);
+                    s0.push(self.s0[k]);
+                }
+            }
+        }
+        if free.is_empty() {
+            self.evals.set(self.evals.get() + 1);
+            let Ok(values) = (self.model)(&cfg) else {
+                return Ok(None);
+            };
+            let cv = cv_rmse_pct(self.meas, &values);
+            return Ok(Some(Run {
+                config: cfg,
+                values,
+                cv,
+                termination: first.termination.clone(),
+                unconverged: first.unconverged,
+            }));
+        }
+        let x0: Vec<f64> = free.iter().map(|id| id.get(&cfg)).collect();
+        let reduced = Solver {
+            cfg: &cfg,
+            meas: self.meas,
+            model: self.model,
+            free: &free,
+            maps,
+            s0,
+            progress: self.progress,
+            evals: std::cell::Cell::new(self.evals.get()),
+            lm: self.lm.clone(),
+        };
+        let run = reduced.run(&x0);
+        self.evals.set(reduced.evals.get());
+        Ok(run.ok())
+    }
+
+    /// True if, at `at` (stuck parameters on their bounds), moving any stuck parameter off its
+    /// bound by the stuck distance (a thousandth of its interval, or of the start's distance
+    /// from a lower bound) makes the fit worse: the data push it outward.
+    fn bounds_hold(&self, at: &Run, stuck: &[Option<Bound>]) -> bool {
+        self.free.iter().enumerate().all(|(k, id)| {
+            let Some(b) = stuck[k] else { return true };
+            let (lo, hi) = id.bounds(self.cfg);
+            let step = match self.maps[k] {
+                Map::Logistic { lo, hi } => NEAR * (hi - lo),
+                Map::Exp { lo } => NEAR * (self.s0[k] - lo),
+                Map::Identity => return false,
+            };
+            let v = if b == Bound::Lower {
+                lo + step
+            } else {
+                hi - step
+            };
+            let mut c = at.config.clone();
+            if id.set(&mut c, v).is_err() {
+                return false;
+            }
+            self.evals.set(self.evals.get() + 1);
+            match (self.model)(&c) {
+                // worse beyond the last digits: on a plateau (a bound far out, where the model
+                // no longer depends on the parameter) the bound is no optimum of the data
+                Ok(values) => cv_rmse_pct(self.meas, &values) > at.cv * (1.0 + PLATEAU),
+                Err(_) => false,
+            }
+        })
     }
 
     /// `best` with each parameter next to its bound set onto it where that is no worse (within

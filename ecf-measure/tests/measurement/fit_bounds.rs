@@ -83,6 +83,8 @@ fn a_start_on_a_bound_stays_there_flagged_when_the_data_push_outward() {
         assert_eq!(p.value, 0.0, "start {k}");
         assert!(p.stderr.is_nan());
         assert!(r.cv_rmse_pct_after <= r.cv_rmse_pct_before);
+        // the data push k outward: the run on the bound ends the fit, no spread starts
+        assert_eq!(r.starts, 2, "start {k}");
     }
 }
 
