@@ -12,9 +12,9 @@
 //!    best candidate lowers the held-out error by at least `CLAIM_FRACTION` of the baseline.
 
 use crate::evaluate::{predict_warned, Memo, ModelWarning};
-use crate::fit::{default_free, fit_params_with, FitOptions, FreeParam};
+use crate::fit::{default_free, FitOptions, FreeParam};
 pub use crate::heldout::CLAIM_FRACTION;
-use crate::heldout::{folds, heldout};
+use crate::heldout::{folds, heldout, heldout_and_fit};
 use crate::measure::Dataset;
 pub use crate::residuals::{correlations, Correlation};
 use crate::stats::{cv_rmse_pct, mean_sd};
@@ -212,8 +212,8 @@ struct Baseline<'a> {
 impl Baseline<'_> {
     /// The held-out and the all-rows fitted CV(RMSE) of configuration `c` with `free`.
     fn score(&self, c: &Config, free: &[FreeParam]) -> Result<(f64, f64)> {
-        let h = heldout(c, self.data, self.labels, free, self.threads, self.opts)?;
-        let fitted = fit_params_with(c, self.data, free, self.threads, self.opts, &|_| {})?;
+        let (h, fitted) =
+            heldout_and_fit(c, self.data, self.labels, free, self.threads, self.opts)?;
         Ok((h, fitted.cv_rmse_pct_after))
     }
 
@@ -392,8 +392,8 @@ impl Baseline<'_> {
                     effect: c.modifiers.len() - 1,
                     param: 0,
                 });
-                let h = heldout(&c, data, self.labels, &free, self.threads, self.opts)?;
-                let fitted = fit_params_with(&c, data, &free, self.threads, self.opts, &|_| {})?;
+                let (h, fitted) =
+                    heldout_and_fit(&c, data, self.labels, &free, self.threads, self.opts)?;
                 let kfit = fitted.params.last().map(|p| p.value).unwrap_or(0.0);
                 let (folds_by, base_heldout) = (self.folds_by, self.heldout);
                 candidates.push(Candidate {

@@ -1,11 +1,11 @@
 //! Held-out scoring shared by the diagnosis and the search of forms: fold labels, a subset of the rows, the held-out CV(RMSE) and the fraction by which a candidate must lower it.
 
 use crate::evaluate::predict_with;
-use crate::fit::{FitOptions, FreeParam};
+use crate::fit::{fit_params_with, FitOptions, FitResult, FreeParam};
 use crate::measure::Dataset;
 use crate::stats::cv_rmse_pct;
 use creep_core::config::Config;
-use creep_core::error::Result;
+use creep_core::error::{CreepError, Result};
 
 /// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
 pub const CLAIM_FRACTION: f64 = 0.25;
@@ -60,7 +60,9 @@ pub(crate) fn subset(data: &Dataset, keep: &[bool]) -> Dataset {
     }
 }
 
-/// Held-out CV(RMSE): fit `free` on all folds but one, predict that one.
+/// Held-out CV(RMSE): fit `free` on all folds but one, predict that one. The folds' fits
+/// run side by side on `threads` workers ([`side_by_side`]); the result does not depend on
+/// `threads`.
 pub(crate) fn heldout(
     cfg: &Config,
     data: &Dataset,
@@ -69,23 +71,136 @@ pub(crate) fn heldout(
     threads: usize,
     opts: &FitOptions,
 ) -> Result<f64> {
-    let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
-    let mut meas = Vec::new();
-    let mut model = Vec::new();
-    for f in 0..nf {
-        let train = subset(data, &labels.iter().map(|l| *l != f).collect::<Vec<_>>());
-        let test = subset(data, &labels.iter().map(|l| *l == f).collect::<Vec<_>>());
-        if test.rows.is_empty() {
-            continue;
-        }
-        let fitted = if free.is_empty() || train.rows.len() <= free.len() {
-            cfg.clone()
-        } else {
-            crate::fit::fitted_or_kept(cfg, &train, free, threads, opts)?
-        };
-        let p = predict_with(&fitted, &test, threads, opts.memo)?;
-        meas.extend(test.rows.iter().map(|r| r.f));
-        model.extend(p.iter().map(|p| p.f));
+    heldout_with(cfg, data, labels, free, threads, opts, false).map(|(h, _)| h)
+}
+
+/// [`heldout`] and the fit of `free` on all rows ([`crate::fit::fit_params_with`]), the
+/// full fit side by side with the folds' fits.
+pub(crate) fn heldout_and_fit(
+    cfg: &Config,
+    data: &Dataset,
+    labels: &[usize],
+    free: &[FreeParam],
+    threads: usize,
+    opts: &FitOptions,
+) -> Result<(f64, FitResult)> {
+    match heldout_with(cfg, data, labels, free, threads, opts, true)? {
+        (h, Some(full)) => Ok((h, full)),
+        (_, None) => Err(CreepError::State("the fit on all rows did not run".into())),
     }
-    Ok(cv_rmse_pct(&meas, &model))
+}
+
+/// One job of [`heldout_with`]: a fold's measured and held-out model values, or the fit on
+/// all rows.
+enum Job {
+    Fold(Result<(Vec<f64>, Vec<f64>)>),
+    Full(Box<Result<FitResult>>),
+}
+
+fn heldout_with(
+    cfg: &Config,
+    data: &Dataset,
+    labels: &[usize],
+    free: &[FreeParam],
+    threads: usize,
+    opts: &FitOptions,
+    full: bool,
+) -> Result<(f64, Option<FitResult>)> {
+    let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
+    // the fit on all rows first: it has the most rows, the longest job goes first
+    let jobs = usize::from(full) + nf;
+    let done = side_by_side(jobs, threads, &|j, inner| {
+        if full && j == 0 {
+            return Job::Full(Box::new(fit_params_with(
+                cfg,
+                data,
+                free,
+                inner,
+                opts,
+                &|_| {},
+            )));
+        }
+        let f = j - usize::from(full);
+        Job::Fold(fold(cfg, data, labels, free, f, inner, opts))
+    });
+    let (mut meas, mut model, mut fitted) = (Vec::new(), Vec::new(), None);
+    for d in done {
+        match d {
+            Job::Fold(r) => {
+                let (m, p) = r?;
+                meas.extend(m);
+                model.extend(p);
+            }
+            Job::Full(r) => fitted = Some(*r),
+        }
+    }
+    let fitted = fitted.transpose()?;
+    Ok((cv_rmse_pct(&meas, &model), fitted))
+}
+
+/// Fold `f`'s measured values and the model fitted on the other folds there (empty when the
+/// fold has no rows).
+fn fold(
+    cfg: &Config,
+    data: &Dataset,
+    labels: &[usize],
+    free: &[FreeParam],
+    f: usize,
+    threads: usize,
+    opts: &FitOptions,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let train = subset(data, &labels.iter().map(|l| *l != f).collect::<Vec<_>>());
+    let test = subset(data, &labels.iter().map(|l| *l == f).collect::<Vec<_>>());
+    if test.rows.is_empty() {
+        return Ok((Vec::new(), Vec::new()));
+    }
+    let fitted = if free.is_empty() || train.rows.len() <= free.len() {
+        cfg.clone()
+    } else {
+        crate::fit::fitted_or_kept(cfg, &train, free, threads, opts)?
+    };
+    let p = predict_with(&fitted, &test, threads, opts.memo)?;
+    Ok((
+        test.rows.iter().map(|r| r.f).collect(),
+        p.iter().map(|p| p.f).collect(),
+    ))
+}
+
+/// Runs jobs `0..n` on up to `threads` workers, each taking the next job as it finishes one
+/// (the longest first, if the caller orders them so), and returns their results in job
+/// order. `job(j, inner)` runs job `j` with `inner` threads of its own (`threads` shared
+/// among the workers). A worker's panic is passed on.
+fn side_by_side<T: Send>(
+    n: usize,
+    threads: usize,
+    job: &(dyn Fn(usize, usize) -> T + Sync),
+) -> Vec<T> {
+    let workers = threads.clamp(1, n.max(1));
+    let inner = (threads / workers).max(1);
+    if workers == 1 {
+        return (0..n).map(|j| job(j, inner)).collect();
+    }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let mut done: Vec<(usize, T)> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..workers)
+            .map(|_| {
+                s.spawn(|| {
+                    let mut out = Vec::new();
+                    loop {
+                        let j = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        if j >= n {
+                            return out;
+                        }
+                        out.push((j, job(j, inner)));
+                    }
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    });
+    done.sort_by_key(|(j, _)| *j);
+    done.into_iter().map(|(_, t)| t).collect()
 }

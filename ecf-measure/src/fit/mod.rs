@@ -503,7 +503,7 @@ impl Solver<'_> {
             s0,
             progress: self.progress,
             evals: std::cell::Cell::new(self.evals.get()),
-            lm: self.lm.clone(),
+            lm: self.lm,
         };
         let run = reduced.run(&x0);
         self.evals.set(reduced.evals.get());
