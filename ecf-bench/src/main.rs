@@ -216,6 +216,65 @@ fn transient_table(quick: bool) {
     }
 }
 
+/// Transient cost with the symmetric strips computed once (c_y = 0, no spin) against every
+/// strip computed, interleaved step by step on the coarse grids the tolerance chooses at 20
+/// m/s (results bit-identical; test `mirrored_strips_are_bit_identical`).
+fn mirror_table(quick: bool) {
+    let sim = if quick { 0.005 } else { 0.05 };
+    println!("== transient ECF (cells-ho, creepage 1 % +- 0.5 % at 50 Hz, F_N = 110 kN, 20 m/s, 0.1 ms steps, {sim} s simulated): symmetric strips computed once vs every strip (medians of the steps)");
+    println!(
+        "{:>10} {:>6} {:>16} {:>16} {:>8}",
+        "preset", "grid", "wall/sim each", "wall/sim once", "ratio"
+    );
+    let dt = 1e-4;
+    for (preset, nx, ny) in [
+        ("dry", 14, 3),
+        ("table4.1", 20, 3),
+        ("wet", 10, 3),
+        ("dry", 20, 5),
+    ] {
+        let i = Inputs {
+            cx: 0.01,
+            v: 20.0,
+            fn_n: 110e3,
+            ..Inputs::default()
+        };
+        let mut ms: Vec<Model> = [false, true]
+            .iter()
+            .map(|&on| {
+                let mut m = model(preset, nx, ny);
+                if let Model::Bristle(c) = &mut m {
+                    c.set_scheme(Scheme::CellsHigher);
+                    c.set_mirror_strips(on);
+                }
+                m.steady(&i).expect("steady");
+                m
+            })
+            .collect();
+        let n = ((sim / dt) as usize).max(5);
+        let mut t = [Vec::with_capacity(n), Vec::with_capacity(n)];
+        for k in 0..n {
+            let j = Inputs {
+                cx: 0.01 + 0.005 * (2.0 * std::f64::consts::PI * 50.0 * k as f64 * dt).sin(),
+                ..i
+            };
+            for (m, tk) in ms.iter_mut().zip(t.iter_mut()) {
+                let s = Instant::now();
+                black_box(m.step(dt, &j).expect("step"));
+                tk.push(s.elapsed().as_secs_f64());
+            }
+        }
+        let [each, once] = t.map(median);
+        println!(
+            "{preset:>10} {:>6} {:>16.3} {:>16.3} {:>8.2}",
+            format!("{nx}x{ny}"),
+            each / dt,
+            once / dt,
+            once / each
+        );
+    }
+}
+
 /// Transient cost with the strips on several threads (`Contact::set_threads`), against one
 /// thread, interleaved step by step; not pinned to one core (scripts/bench.sh runs it apart).
 fn threads_table(quick: bool) {
@@ -360,6 +419,7 @@ fn main() {
     }
     if run("transient") {
         transient_table(quick);
+        mirror_table(quick);
     }
     if run("diagnose") {
         diagnose(quick);

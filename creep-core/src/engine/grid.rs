@@ -41,6 +41,16 @@ pub(super) fn strip_rule(ny: usize) -> Vec<(f64, f64)> {
         }
         out.push((x, 2.0 / ((1.0 - x * x) * dp * dp)));
     }
+    // exactly symmetric about eta = 0 (the roots of the upper half mirror those of the lower
+    // half, the middle one of an odd rule is 0): a strip and its mirror image then compute
+    // the same states, bit for bit, where the inputs are symmetric ([`Contact::each_strip`])
+    for i in 0..ny / 2 {
+        let (x, w) = out[i];
+        out[ny - 1 - i] = (-x, w);
+    }
+    if ny % 2 == 1 {
+        out[ny / 2].0 = 0.0;
+    }
     out
 }
 
@@ -231,11 +241,13 @@ mod tests {
                     x > -1.0 && x < 1.0 && w > 0.0,
                     "ny {ny}: node {k} ({x}, {w})"
                 );
+                // exactly: mirrored strips compute bit-identical states (Contact::each_strip)
                 let (xm, wm) = r[ny - 1 - k];
                 assert!(
-                    (x + xm).abs() < 1e-14 && (w - wm).abs() < 1e-14,
-                    "ny {ny}: symmetry"
+                    x.to_bits() == (-xm).to_bits() || (x == 0.0 && k == ny / 2),
+                    "ny {ny}: symmetry of node {k}: {x} vs {xm}"
                 );
+                assert_eq!(w.to_bits(), wm.to_bits(), "ny {ny}: symmetry of weight {k}");
                 if k > 0 {
                     assert!(x > r[k - 1].0, "ny {ny}: ascending");
                 }

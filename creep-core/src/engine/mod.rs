@@ -196,7 +196,7 @@ pub(crate) struct OwnedRawState {
 
 /// The part of the current cell a strip has travelled since its bristles' last lattice node
 /// (the whole-cell commit, docs/model.md section 3): sums over the steps' pieces of it.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Partial {
     /// Distance travelled, m.
     pub d: f64,
@@ -286,6 +286,13 @@ pub struct Contact {
     /// [`FastPath::Cold`];
     /// module `fastpath` states what each supports).
     fast: fastpath::Taken,
+    /// Every strip's state equals its mirror image's about y = 0 (strip ny - 1 - j), bit for
+    /// bit: then, while the inputs are symmetric too, one of each pair is computed and copied
+    /// ([`Contact::each_strip`]).
+    strips_mirrored: bool,
+    /// Symmetric strips are computed once ([`Contact::set_mirror_strips`]; off for tests and
+    /// benchmarks that compare both).
+    mirror_strips: bool,
 }
 
 impl Contact {
@@ -353,6 +360,8 @@ impl Contact {
             modifiers: modifiers::Modifiers::new(&cfg.modifiers),
             softening_fast: false,
             fast: fastpath::Taken::default(),
+            strips_mirrored: true,
+            mirror_strips: true,
             t_tol: {
                 let r = Resolved::from_config(cfg);
                 let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
@@ -559,6 +568,7 @@ impl Contact {
     }
 
     fn lift_off(&mut self) -> Outputs {
+        self.strips_mirrored = true;
         for s in self.st.iter_mut() {
             *s = BristleState {
                 temp: self.inputs.t_bulk,
@@ -593,7 +603,9 @@ impl Contact {
         // bristle entered under these inputs, i.e. the march of newly entered bristles over
         // the whole strip at phase 0
         self.out = if self.coulomb_path() {
-            self.steady_coulomb()
+            let out = self.steady_coulomb();
+            self.strips_mirrored = self.strips_equal();
+            out
         } else {
             self.steady_march()
         };
@@ -603,6 +615,9 @@ impl Contact {
     /// The steady march of every strip (the general path of [`Self::steady`]).
     #[inline(never)]
     fn steady_march(&mut self) -> Outputs {
+        // every strip is marched afresh: mirror images from the start where the inputs are
+        // symmetric
+        self.strips_mirrored = true;
         self.each_strip(|c, sp| {
             *sp.head = 0;
             *sp.phase = 0.0;
@@ -696,6 +711,7 @@ impl Contact {
         }
         self.initialized = initialized;
         self.out = out;
+        self.strips_mirrored = self.strips_equal();
         Ok(())
     }
 

@@ -45,7 +45,24 @@ impl Contact {
     /// depend on the number of threads: strips share no mutable state). While `f` runs, the
     /// contact's per-strip vectors (`st`, `acc`, `head`, `phase`, caches) are moved into the
     /// strips: `f` reaches them through its [`Strip`] only, never through the contact.
+    ///
+    /// Symmetric strips are computed once: the strips lie symmetric about y = 0 (bit for bit,
+    /// [`super::grid::strip_rule`]) and, with neither lateral creepage nor spin, nothing a
+    /// move computes depends on the sign of y (y enters only through c_s y and c_s x, and
+    /// the pressure through eta^2; IEEE rounding is symmetric in sign). So a strip whose
+    /// state equals its mirror image's stays equal to it: while that holds for every strip
+    /// (`strips_mirrored`) and the inputs are symmetric, `f` runs on the strips
+    /// j <= ny - 1 - j only and each is copied to its mirror image, with bit-identical
+    /// results (test `mirrored_strips_are_bit_identical`).
     pub(super) fn each_strip(&mut self, f: impl Fn(&Contact, &mut Strip) + Sync) {
+        let sym = self.strips_mirrored
+            && self.ny > 1
+            && !self.patch.line
+            && self.inputs.cy == 0.0
+            && self.inputs.spin == 0.0;
+        self.strips_mirrored = sym;
+        let mirror = sym && self.mirror_strips;
+        let computed = if mirror { self.ny.div_ceil(2) } else { self.ny };
         let nx1 = self.nx + 1;
         let mut st = std::mem::take(&mut self.st);
         let mut acc = std::mem::take(&mut self.acc);
@@ -92,6 +109,7 @@ impl Contact {
                         fac,
                     },
                 )
+                .take(computed)
                 .collect();
             match &self.pool {
                 Some(pool) if strips.len() > 1 => pool.install(|| {
@@ -113,6 +131,58 @@ impl Contact {
         self.np_cache = nodes;
         self.np_cache_p0 = nodes_p0;
         self.fac_cache = fac;
+        if mirror {
+            self.copy_to_mirror_strips();
+        }
+    }
+
+    /// Copies the state of each strip j < ny / 2 onto its mirror image ny - 1 - j (bristles,
+    /// accumulators, node states, part of the cell, ring-buffer head and phase; the caches
+    /// refill themselves).
+    fn copy_to_mirror_strips(&mut self) {
+        let (ny, nx1) = (self.ny, self.nx + 1);
+        for j in 0..ny / 2 {
+            let m = ny - 1 - j;
+            let (src, dst) = (j * nx1, m * nx1);
+            self.st.copy_within(src..src + nx1, dst);
+            self.acc.copy_within(src..src + nx1, dst);
+            self.node_st.copy_within(src..src + nx1, dst);
+            self.node_acc.copy_within(src..src + nx1, dst);
+            self.part[m] = self.part[j];
+            self.head[m] = self.head[j];
+            self.phase[m] = self.phase[j];
+        }
+    }
+
+    /// True if every strip's state equals its mirror image's about y = 0, bit for bit (see
+    /// [`Self::each_strip`]).
+    pub(super) fn strips_equal(&self) -> bool {
+        let (ny, nx1) = (self.ny, self.nx + 1);
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        (0..ny / 2).all(|j| {
+            let m = ny - 1 - j;
+            let (a, b) = (j * nx1..(j + 1) * nx1, m * nx1..(m + 1) * nx1);
+            self.head[j] == self.head[m]
+                && same(self.phase[j], self.phase[m])
+                && self.part[j] == self.part[m]
+                && self.st[a.clone()]
+                    .iter()
+                    .zip(&self.st[b.clone()])
+                    .all(|(x, y)| x == y)
+                && self.node_st[a.clone()]
+                    .iter()
+                    .zip(&self.node_st[b.clone()])
+                    .all(|(x, y)| x == y)
+                && self.acc[a.clone()] == self.acc[b.clone()]
+                && self.node_acc[a] == self.node_acc[b]
+        })
+    }
+
+    /// Computes strips that are mirror images of each other once (on, the default) or each
+    /// of them (off: for tests and benchmarks that compare both; results are bit-identical).
+    #[doc(hidden)]
+    pub fn set_mirror_strips(&mut self, on: bool) {
+        self.mirror_strips = on;
     }
 
     /// Advances the strips on `threads` threads (1: the calling thread alone, the default).

@@ -10,6 +10,7 @@ mod fastsim_limit;
 mod grid_convergence;
 mod heat;
 mod kalker_linear_theory;
+mod mirrored_strips;
 mod modifiers;
 mod periodic_creepage;
 mod published_references;
