@@ -169,9 +169,9 @@ pub(crate) fn config(preset: &str, nx: usize, ny: usize) -> Config {
 pub fn run(case: &Case, nx: usize, ny: usize, scheme: Scheme) -> Response {
     let mut c = Contact::new(&config(case.preset, nx, ny)).expect("contact");
     c.set_scheme(scheme);
-    // every strip computed: the cases have neither lateral creepage nor spin, and computing
-    // the symmetric strips once would make their costs those of such inputs only (the
-    // results are bit-identical either way); the table's costs hold for any inputs
+    // every strip computed: the cases have no spin, and computing the symmetric strips once
+    // would make their costs those of such inputs only (the results are bit-identical
+    // either way); the table's costs hold for any inputs
     c.set_mirror_strips(false);
     let inp = |cx: f64| Inputs {
         cx,

@@ -216,7 +216,7 @@ fn transient_table(quick: bool) {
     }
 }
 
-/// Transient cost with the symmetric strips computed once (c_y = 0, no spin) against every
+/// Transient cost with the symmetric strips computed once (no spin) against every
 /// strip computed, interleaved step by step on the coarse grids the tolerance chooses at 20
 /// m/s (results bit-identical; test `mirrored_strips_are_bit_identical`).
 fn mirror_table(quick: bool) {

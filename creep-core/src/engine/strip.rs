@@ -47,19 +47,17 @@ impl Contact {
     /// strips: `f` reaches them through its [`Strip`] only, never through the contact.
     ///
     /// Symmetric strips are computed once: the strips lie symmetric about y = 0 (bit for bit,
-    /// [`super::grid::strip_rule`]) and, with neither lateral creepage nor spin, nothing a
-    /// move computes depends on the sign of y (y enters only through c_s y and c_s x, and
-    /// the pressure through eta^2; IEEE rounding is symmetric in sign). So a strip whose
-    /// state equals its mirror image's stays equal to it: while that holds for every strip
-    /// (`strips_mirrored`) and the inputs are symmetric, `f` runs on the strips
-    /// j <= ny - 1 - j only and each is copied to its mirror image, with bit-identical
-    /// results (test `mirrored_strips_are_bit_identical`).
+    /// [`super::grid::strip_rule`]) and, without spin, nothing a move computes depends on the
+    /// sign of y (the rigid slip and the elastic increments are uniform over the contact, y
+    /// enters only through c_s y and c_s x; the pressure through eta^2; IEEE rounding is
+    /// symmetric in sign), with or without lateral creepage. So a strip whose state equals
+    /// that of the strip at -eta stays equal to it: while that holds for every strip
+    /// (`strips_mirrored`) and the spin is 0, `f` runs on the strips j <= ny - 1 - j only
+    /// and each is copied onto strip ny - 1 - j, with bit-identical results (test
+    /// `mirrored_strips_are_bit_identical`).
     pub(super) fn each_strip(&mut self, f: impl Fn(&Contact, &mut Strip) + Sync) {
-        let sym = self.strips_mirrored
-            && self.ny > 1
-            && !self.patch.line
-            && self.inputs.cy == 0.0
-            && self.inputs.spin == 0.0;
+        let sym =
+            self.strips_mirrored && self.ny > 1 && !self.patch.line && self.inputs.spin == 0.0;
         self.strips_mirrored = sym;
         let mirror = sym && self.mirror_strips;
         let computed = if mirror { self.ny.div_ceil(2) } else { self.ny };

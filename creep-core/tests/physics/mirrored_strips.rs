@@ -1,4 +1,4 @@
-//! Strips that mirror each other about y = 0 are computed once while the inputs are symmetric (no lateral creepage, no spin): the results are bit-identical to computing every strip, through asymmetric inputs, reversal, standstill, long steps, lift-off and a saved and restored state.
+//! The strips at eta and -eta are computed once while there is no spin (with or without lateral creepage): the results are bit-identical to computing every strip, through lateral creepage, spin, reversal, standstill, long steps, lift-off and a saved and restored state.
 use creep_core::engine::Scheme;
 use creep_core::{Config, Grid, Inputs, Model};
 
@@ -42,9 +42,9 @@ fn run(preset: &str, grid: (usize, usize), scheme: Scheme, mirror: bool) -> Vec<
     for k in 0..90 {
         let j = Inputs {
             cx: 0.05 + 0.04 * (k as f64 * 0.3).sin(),
-            // asymmetric inputs from step 45 to 49: every strip is computed from then on,
-            // until the steady state at step 70
-            cy: if (45..50).contains(&k) { 0.002 } else { 0.0 },
+            // lateral creepage from step 10 to 49 (the strips stay equal in pairs), spin at
+            // step 47: every strip is computed from then on, until the steady state at step 70
+            cy: if (10..50).contains(&k) { 0.002 } else { 0.0 },
             spin: if k == 47 { 0.3 } else { 0.0 },
             fn_n: if k == 25 {
                 0.0
