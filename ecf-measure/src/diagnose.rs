@@ -12,9 +12,9 @@
 //!    best candidate lowers the held-out error by at least `CLAIM_FRACTION` of the baseline.
 
 use crate::evaluate::{predict_warned, Memo, ModelWarning};
-use crate::fit::{default_free, FitOptions, FreeParam};
+use crate::fit::{default_free, FitOptions, FitResult, FreeParam};
 pub use crate::heldout::CLAIM_FRACTION;
-use crate::heldout::{folds, heldout, heldout_and_fit};
+use crate::heldout::{folds, heldout, heldout_and_fit_all};
 use crate::measure::Dataset;
 pub use crate::residuals::{correlations, Correlation};
 use crate::stats::{cv_rmse_pct, mean_sd};
@@ -209,12 +209,49 @@ struct Baseline<'a> {
     heldout: f64,
 }
 
+/// A candidate's report entry from its held-out CV(RMSE) (%) and its fit on all rows.
+type Entry = Box<dyn FnOnce(f64, &FitResult) -> Candidate>;
+
+/// A candidate before its fits: its configuration and free parameters, the stage shown while
+/// it runs, and its report entry.
+struct Pending {
+    cfg: Config,
+    free: Vec<FreeParam>,
+    stage: String,
+    entry: Entry,
+}
+
 impl Baseline<'_> {
-    /// The held-out and the all-rows fitted CV(RMSE) of configuration `c` with `free`.
-    fn score(&self, c: &Config, free: &[FreeParam]) -> Result<(f64, f64)> {
-        let (h, fitted) =
-            heldout_and_fit(c, self.data, self.labels, free, self.threads, self.opts)?;
-        Ok((h, fitted.cv_rmse_pct_after))
+    /// The candidates scored: every fit of every candidate side by side
+    /// ([`heldout_and_fit_all`]), the same results as one candidate after the other; the
+    /// first error in the candidates' order.
+    fn score_all(
+        &self,
+        pending: Vec<Pending>,
+        progress: &(dyn Fn(&str) + Sync),
+    ) -> Result<Vec<Candidate>> {
+        let items: Vec<(&Config, &[FreeParam])> = pending
+            .iter()
+            .map(|p| (&p.cfg, p.free.as_slice()))
+            .collect();
+        let stages: Vec<&str> = pending.iter().map(|p| p.stage.as_str()).collect();
+        let results = heldout_and_fit_all(
+            &items,
+            self.data,
+            self.labels,
+            self.threads,
+            self.opts,
+            &|i| progress(stages[i]),
+        );
+        drop(items);
+        pending
+            .into_iter()
+            .zip(results)
+            .map(|(p, r)| {
+                let (h, fitted) = r?;
+                Ok((p.entry)(h, &fitted))
+            })
+            .collect()
     }
 
     /// The baseline's free parameters with `more` added (each once).
@@ -230,7 +267,7 @@ impl Baseline<'_> {
 
     /// Each catalogue effect the configuration lacks and the data can show, added and
     /// refitted; and whether every effect that can act on these data is already on.
-    fn catalogue(&self, progress: &(dyn Fn(&str) + Sync)) -> Result<(Vec<Candidate>, bool)> {
+    fn catalogue(&self) -> Result<(Vec<Pending>, bool)> {
         let (cfg, data) = (self.cfg, self.data);
         let mut candidates = Vec::new();
         if cfg.model == ModelKind::Polach || cfg.has(Effect::Coulomb) {
@@ -260,7 +297,6 @@ impl Baseline<'_> {
             if e == Effect::SurfaceTimeFlash && !slide {
                 continue;
             }
-            progress(info.name);
             let mut c = cfg.clone();
             c.effects.insert(e);
             let mut more = effect_params(e);
@@ -269,7 +305,6 @@ impl Baseline<'_> {
                 more.extend(default_free(&c));
             }
             let free = self.free_with(more);
-            let (h, fitted) = self.score(&c, &free)?;
             let evidence = self
                 .corr
                 .iter()
@@ -278,15 +313,21 @@ impl Baseline<'_> {
                 .map(|k| format!("residual correlation with {} r = {:+.2}", k.variable, k.r))
                 .unwrap_or_else(|| "no signature variable in the data".into());
             let first_sentence = first_sentence(info.description);
-            let (folds_by, base_heldout) = (self.folds_by, self.heldout);
-            candidates.push(Candidate {
-                effect: info.name.to_string(),
-                heldout_cv_rmse_pct: h,
-                fitted_cv_rmse_pct: fitted,
-                free: free.iter().map(|p| p.name(&c)).collect(),
-                explanation: format!(
-                    "{first_sentence}. Evidence: {evidence}; adding it and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %."
-                ),
+            let (folds_by, base_heldout) = (self.folds_by.to_string(), self.heldout);
+            let names: Vec<String> = free.iter().map(|p| p.name(&c)).collect();
+            candidates.push(Pending {
+                cfg: c,
+                free,
+                stage: info.name.to_string(),
+                entry: Box::new(move |h, fitted| Candidate {
+                    effect: info.name.to_string(),
+                    heldout_cv_rmse_pct: h,
+                    fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
+                    free: names,
+                    explanation: format!(
+                        "{first_sentence}. Evidence: {evidence}; adding it and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %."
+                    ),
+                }),
             });
         }
         Ok((candidates, all_on))
@@ -294,10 +335,7 @@ impl Baseline<'_> {
 
     /// Registered Rust effects the configuration lacks, whose data columns the file has, added
     /// and refitted; and those not tried for a missing column, in words.
-    fn rust_effects(
-        &self,
-        progress: &(dyn Fn(&str) + Sync),
-    ) -> Result<(Vec<Candidate>, Vec<String>)> {
+    fn rust_effects(&self) -> Result<(Vec<Pending>, Vec<String>)> {
         let (cfg, data) = (self.cfg, self.data);
         let (mut candidates, mut untried) = (Vec::new(), Vec::new());
         if cfg.model == ModelKind::Polach {
@@ -315,7 +353,6 @@ impl Baseline<'_> {
                 untried.push(format!("{} (needs the column '{c}')", eff.name()));
                 continue;
             }
-            progress(eff.name());
             let mut c = cfg.clone();
             c.modifiers.push(creep_core::AnyModifier::Rust(
                 creep_core::custom::CustomUse::by_name(eff.name())?,
@@ -331,17 +368,22 @@ impl Baseline<'_> {
                     });
                 }
             }
-            let (h, fitted) = self.score(&c, &free)?;
-            let (folds_by, base_heldout) = (self.folds_by, self.heldout);
-            candidates.push(Candidate {
-                effect: format!("Rust effect {}", eff.name()),
-                heldout_cv_rmse_pct: h,
-                fitted_cv_rmse_pct: fitted,
-                free: free.iter().map(|p| p.name(&c)).collect(),
-                explanation: format!(
-                    "{}. Adding this registered Rust effect and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %.",
-                    first_sentence(eff.description())
-                ),
+            let (folds_by, base_heldout) = (self.folds_by.to_string(), self.heldout);
+            let names: Vec<String> = free.iter().map(|p| p.name(&c)).collect();
+            candidates.push(Pending {
+                cfg: c,
+                free,
+                stage: eff.name().to_string(),
+                entry: Box::new(move |h, fitted| Candidate {
+                    effect: format!("Rust effect {}", eff.name()),
+                    heldout_cv_rmse_pct: h,
+                    fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
+                    free: names,
+                    explanation: format!(
+                        "{}. Adding this registered Rust effect and refitting takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %.",
+                        first_sentence(eff.description())
+                    ),
+                }),
             });
         }
         Ok((candidates, untried))
@@ -349,7 +391,7 @@ impl Baseline<'_> {
 
     /// Generic formula effects on the (at most two) extra columns with strong residual
     /// structure, added and refitted.
-    fn formulas(&self, progress: &(dyn Fn(&str) + Sync)) -> Result<Vec<Candidate>> {
+    fn formulas(&self) -> Result<Vec<Pending>> {
         let (cfg, data) = (self.cfg, self.data);
         let mut candidates = Vec::new();
         if cfg.model == ModelKind::Polach {
@@ -375,7 +417,6 @@ impl Baseline<'_> {
             let (mean, sd) = mean_sd(&x);
             let sd = sd.max(1e-12);
             for &t in targets {
-                progress(&format!("formula on {} ({})", cr.variable, t.name()));
                 let name = format!("{}_by_{}", t.name(), cr.variable);
                 let factor = format!("exp(k * ({} - {mean}) / {sd})", cr.variable);
                 let k = FormulaParam {
@@ -392,19 +433,26 @@ impl Baseline<'_> {
                     effect: c.modifiers.len() - 1,
                     param: 0,
                 });
-                let (h, fitted) =
-                    heldout_and_fit(&c, data, self.labels, &free, self.threads, self.opts)?;
-                let kfit = fitted.params.last().map(|p| p.value).unwrap_or(0.0);
-                let (folds_by, base_heldout) = (self.folds_by, self.heldout);
-                candidates.push(Candidate {
-                    effect: format!("formula: {} x exp(k ({} - {mean:.4}) / {sd:.4})", t.name(), cr.variable),
-                    heldout_cv_rmse_pct: h,
-                    fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
-                    free: free.iter().map(|p| p.name(&c)).collect(),
-                    explanation: format!(
-                        "No catalogue effect uses the column '{}', but the residuals follow it (r = {:+.2}). A generic formula effect scaling {} by exp(k (x - mean)/sd) (fitted k = {kfit:+.3}) takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %. Look for the physical mechanism behind this column, then write it as a formula effect or an effect in Rust.",
-                        cr.variable, cr.r, t.name()
-                    ),
+                let (folds_by, base_heldout) = (self.folds_by.to_string(), self.heldout);
+                let names: Vec<String> = free.iter().map(|p| p.name(&c)).collect();
+                let (variable, r) = (cr.variable.clone(), cr.r);
+                candidates.push(Pending {
+                    cfg: c,
+                    free,
+                    stage: format!("formula on {} ({})", cr.variable, t.name()),
+                    entry: Box::new(move |h, fitted| {
+                        let kfit = fitted.params.last().map(|p| p.value).unwrap_or(0.0);
+                        Candidate {
+                            effect: format!("formula: {} x exp(k ({variable} - {mean:.4}) / {sd:.4})", t.name()),
+                            heldout_cv_rmse_pct: h,
+                            fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
+                            free: names,
+                            explanation: format!(
+                                "No catalogue effect uses the column '{variable}', but the residuals follow it (r = {r:+.2}). A generic formula effect scaling {} by exp(k (x - mean)/sd) (fitted k = {kfit:+.3}) takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %. Look for the physical mechanism behind this column, then write it as a formula effect or an effect in Rust.",
+                                t.name()
+                            ),
+                        }
+                    }),
                 });
             }
         }
@@ -451,10 +499,12 @@ fn run(
         free: &base_free,
         heldout: base_heldout,
     };
-    let (mut candidates, catalogue_all_on) = base.catalogue(progress)?;
-    let (rust, untried) = base.rust_effects(progress)?;
-    candidates.extend(rust);
-    candidates.extend(base.formulas(progress)?);
+    // every candidate's fits side by side (the same results as one after the other)
+    let (mut pending, catalogue_all_on) = base.catalogue()?;
+    let (rust, untried) = base.rust_effects()?;
+    pending.extend(rust);
+    pending.extend(base.formulas()?);
+    let mut candidates = base.score_all(pending, progress)?;
     candidates.sort_by(|a, b| a.heldout_cv_rmse_pct.total_cmp(&b.heldout_cv_rmse_pct));
     let missing = candidates
         .first()

@@ -71,46 +71,31 @@ pub(crate) fn heldout(
     threads: usize,
     opts: &FitOptions,
 ) -> Result<f64> {
-    heldout_with(cfg, data, labels, free, threads, opts, false).map(|(h, _)| h)
+    heldout_with(cfg, data, labels, free, threads, opts)
 }
 
-/// [`heldout`] and the fit of `free` on all rows ([`crate::fit::fit_params_with`]), the
-/// full fit side by side with the folds' fits.
-pub(crate) fn heldout_and_fit(
-    cfg: &Config,
+/// [`heldout`] and the fit on all rows ([`crate::fit::fit_params_with`]) of several
+/// candidates (configuration, free parameters), all their
+/// fits side by side in one pool of `threads` workers ([`side_by_side`]: no core waits for a
+/// candidate's last fit while another candidate has fits to run); results in the order of
+/// `items`, each as the candidate's fits one after the other would give it. `started(i)` is called when the
+/// first fit of candidate `i` starts.
+pub(crate) fn heldout_and_fit_all(
+    items: &[(&Config, &[FreeParam])],
     data: &Dataset,
     labels: &[usize],
-    free: &[FreeParam],
     threads: usize,
     opts: &FitOptions,
-) -> Result<(f64, FitResult)> {
-    match heldout_with(cfg, data, labels, free, threads, opts, true)? {
-        (h, Some(full)) => Ok((h, full)),
-        (_, None) => Err(CreepError::State("the fit on all rows did not run".into())),
-    }
-}
-
-/// One job of [`heldout_with`]: a fold's measured and held-out model values, or the fit on
-/// all rows.
-enum Job {
-    Fold(Result<(Vec<f64>, Vec<f64>)>),
-    Full(Box<Result<FitResult>>),
-}
-
-fn heldout_with(
-    cfg: &Config,
-    data: &Dataset,
-    labels: &[usize],
-    free: &[FreeParam],
-    threads: usize,
-    opts: &FitOptions,
-    full: bool,
-) -> Result<(f64, Option<FitResult>)> {
+    started: &(dyn Fn(usize) + Sync),
+) -> Vec<Result<(f64, FitResult)>> {
     let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
-    // the fit on all rows first: it has the most rows, the longest job goes first
-    let jobs = usize::from(full) + nf;
-    let done = side_by_side(jobs, threads, &|j, inner| {
-        if full && j == 0 {
+    // per candidate the fit on all rows first (it has the most rows), then the folds
+    let per = 1 + nf;
+    let done = side_by_side(items.len() * per, threads, &|j, inner| {
+        let (i, k) = (j / per, j % per);
+        let (cfg, free) = items[i];
+        if k == 0 {
+            started(i);
             return Job::Full(Box::new(fit_params_with(
                 cfg,
                 data,
@@ -120,11 +105,28 @@ fn heldout_with(
                 &|_| {},
             )));
         }
-        let f = j - usize::from(full);
-        Job::Fold(fold(cfg, data, labels, free, f, inner, opts))
+        Job::Fold(fold(cfg, data, labels, free, k - 1, inner, opts))
     });
+    let mut out = Vec::with_capacity(items.len());
+    let mut jobs = done.into_iter();
+    for _ in items {
+        out.push(collect(jobs.by_ref().take(per)));
+    }
+    out
+}
+
+/// One job of [`heldout_with`] and [`heldout_and_fit_all`]: a fold's measured and held-out
+/// model values, or the fit on all rows.
+enum Job {
+    Fold(Result<(Vec<f64>, Vec<f64>)>),
+    Full(Box<Result<FitResult>>),
+}
+
+/// The held-out CV(RMSE) of one candidate's fold jobs (in fold order) and its fit on all rows;
+/// the first error in the order of the sequential code: the folds', then the full fit's.
+fn collect(jobs: impl Iterator<Item = Job>) -> Result<(f64, FitResult)> {
     let (mut meas, mut model, mut fitted) = (Vec::new(), Vec::new(), None);
-    for d in done {
+    for d in jobs {
         match d {
             Job::Fold(r) => {
                 let (m, p) = r?;
@@ -134,8 +136,31 @@ fn heldout_with(
             Job::Full(r) => fitted = Some(*r),
         }
     }
-    let fitted = fitted.transpose()?;
-    Ok((cv_rmse_pct(&meas, &model), fitted))
+    match fitted {
+        Some(f) => Ok((cv_rmse_pct(&meas, &model), f?)),
+        None => Err(CreepError::State("the fit on all rows did not run".into())),
+    }
+}
+
+fn heldout_with(
+    cfg: &Config,
+    data: &Dataset,
+    labels: &[usize],
+    free: &[FreeParam],
+    threads: usize,
+    opts: &FitOptions,
+) -> Result<f64> {
+    let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
+    let done = side_by_side(nf, threads, &|f, inner| {
+        fold(cfg, data, labels, free, f, inner, opts)
+    });
+    let (mut meas, mut model) = (Vec::new(), Vec::new());
+    for r in done {
+        let (m, p) = r?;
+        meas.extend(m);
+        model.extend(p);
+    }
+    Ok(cv_rmse_pct(&meas, &model))
 }
 
 /// Fold `f`'s measured values and the model fitted on the other folds there (empty when the
