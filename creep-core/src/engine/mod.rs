@@ -568,7 +568,6 @@ impl Contact {
     }
 
     fn lift_off(&mut self) -> Outputs {
-        self.strips_mirrored = true;
         for s in self.st.iter_mut() {
             *s = BristleState {
                 temp: self.inputs.t_bulk,
@@ -579,6 +578,9 @@ impl Contact {
             *a = [0.0; N_KERNEL];
         }
         self.reset_nodes();
+        // the bristles are reset, the strips' ring heads and phases are not: equal only
+        // where they were (a state of an older strip rule may hold phases a bit apart)
+        self.strips_mirrored = self.strips_equal();
         self.out = Outputs::unloaded(self.inputs.t_bulk);
         self.out
     }

@@ -160,6 +160,12 @@ impl Contact {
             tot.add(&grp, &sums, m.a);
         }
         self.st = st;
+        // as the general march: every bristle at its node (its node state its state, no heat
+        // history) and no part of a cell travelled; a step after a steady state in mid-run
+        // must not start from the parts and node states of the run before it
+        self.node_st.copy_from_slice(&self.st);
+        self.node_acc.fill([0.0; crate::thermal::N_KERNEL]);
+        self.part.fill(super::Partial::default());
         self.bound_cache = bounds;
         self.coulomb_outputs(&tot)
     }

@@ -183,6 +183,13 @@ impl Contact {
         self.mirror_strips = on;
     }
 
+    /// True while the strips at eta and -eta hold equal states, so that the next step without
+    /// spin computes one of each pair (for tests).
+    #[doc(hidden)]
+    pub fn strips_mirrored(&self) -> bool {
+        self.strips_mirrored
+    }
+
     /// Advances the strips on `threads` threads (1: the calling thread alone, the default).
     /// The results do not depend on it.
     pub fn set_threads(&mut self, threads: usize) -> crate::Result<()> {

@@ -18,8 +18,15 @@ fn row(o: &creep_core::Outputs) -> Row {
     .map(f64::to_bits)
 }
 
-/// The outputs of a scenario, with the symmetric strips computed once (`mirror`) or each.
-fn run(preset: &str, grid: (usize, usize), scheme: Scheme, mirror: bool) -> Vec<Row> {
+/// The outputs of a scenario, with the symmetric strips computed once (`mirror`) or each, on
+/// `threads` threads, and the state saved at its end.
+fn run(
+    preset: &str,
+    grid: (usize, usize),
+    scheme: Scheme,
+    mirror: bool,
+    threads: usize,
+) -> (Vec<Row>, Vec<u8>) {
     let mut cfg = Config::preset(preset).expect("preset");
     cfg.grid = Grid {
         nx: grid.0,
@@ -27,6 +34,7 @@ fn run(preset: &str, grid: (usize, usize), scheme: Scheme, mirror: bool) -> Vec<
     };
     let mut c = Model::new(&cfg).expect("model");
     c.set_scheme(scheme);
+    c.set_threads(threads).expect("threads");
     match &mut c {
         Model::Bristle(b) => b.set_mirror_strips(mirror),
         _ => panic!("{preset} is not a bristle model"),
@@ -70,8 +78,14 @@ fn run(preset: &str, grid: (usize, usize), scheme: Scheme, mirror: bool) -> Vec<
         }
         let dt = if k == 20 { 5e-3 } else { 1.3e-4 };
         out.push(row(&c.step(dt, &j).expect("step")));
+        if let Model::Bristle(b) = &c {
+            // equal in pairs (so computed once when on) except after the spin of step 47
+            // until the steady state of step 70
+            let equal = !(47..70).contains(&k);
+            assert_eq!(b.strips_mirrored(), equal, "{preset} {scheme:?} step {k}");
+        }
     }
-    out
+    (out, c.save_state())
 }
 
 #[test]
@@ -79,12 +93,18 @@ fn mirrored_strips_are_bit_identical() {
     for preset in ["dry", "wet", "fastsim"] {
         for scheme in [Scheme::CellsHigher, Scheme::CellsMarch, Scheme::Continuous] {
             for grid in [(14, 3), (10, 4), (12, 7)] {
-                let each = run(preset, grid, scheme, false);
-                let once = run(preset, grid, scheme, true);
+                let (each, each_state) = run(preset, grid, scheme, false, 1);
+                // on two threads for one grid (the strips computed are shared among them)
+                let threads = if grid.1 == 7 { 2 } else { 1 };
+                let (once, once_state) = run(preset, grid, scheme, true, threads);
                 assert_eq!(each.len(), once.len());
                 for (k, (a, b)) in each.iter().zip(&once).enumerate() {
                     assert_eq!(a, b, "{preset} {scheme:?} {grid:?}: output {k}");
                 }
+                assert!(
+                    each_state == once_state,
+                    "{preset} {scheme:?} {grid:?}: state"
+                );
             }
         }
     }

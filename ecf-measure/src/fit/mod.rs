@@ -407,8 +407,9 @@ impl Solver<'_> {
             // a bound that holds the optimum needs no search elsewhere: the stuck parameters
             // on their bounds, the others fitted again there, and every stuck one pushed
             // outward by the data (the bound's optimality condition)
+            // the run on the bound counts as a start, also where the model fails in it
+            starts += 1;
             if let Some(p) = self.polish_at_bounds(&best, &stuck)? {
-                starts += 1;
                 // no worse than the first end beyond rounding (a first end within 1e-15 of the
                 // bound can be better in its last bits, as in `onto_bounds`)
                 let holds = p.cv <= best.cv * (1.0 + ROUNDING) && self.bounds_hold(&p, &stuck);
