@@ -14,7 +14,7 @@
 use crate::evaluate::{predict_warned, Memo, ModelWarning};
 use crate::fit::{default_free, FitOptions, FitResult, FreeParam};
 pub use crate::heldout::CLAIM_FRACTION;
-use crate::heldout::{folds, heldout, heldout_and_fit_all};
+use crate::heldout::{fold_count, folds, heldout, heldout_and_fit_all};
 use crate::measure::Dataset;
 pub use crate::residuals::{correlations, Correlation};
 use crate::stats::{cv_rmse_pct, mean_sd};
@@ -482,7 +482,7 @@ fn run(
     let baseline_cv = cv_rmse_pct(&meas, &pred.iter().map(|p| p.f).collect::<Vec<_>>());
     let corr = correlations(data, &pred);
     let (folds_by, labels) = folds(data);
-    let nfolds = labels.iter().max().map(|m| m + 1).unwrap_or(1);
+    let nfolds = fold_count(&labels);
     let base_free: Vec<FreeParam> = default_free(cfg)
         .into_iter()
         .map(FreeParam::Builtin)

@@ -71,7 +71,26 @@ pub(crate) fn heldout(
     threads: usize,
     opts: &FitOptions,
 ) -> Result<f64> {
-    heldout_with(cfg, data, labels, free, threads, opts)
+    pooled_cv(side_by_side(fold_count(labels), threads, &|f, inner| {
+        fold(cfg, data, labels, free, f, inner, opts)
+    }))
+}
+
+/// The number of folds of `labels` (labels are 0, 1, ...).
+pub(crate) fn fold_count(labels: &[usize]) -> usize {
+    labels.iter().max().map(|m| m + 1).unwrap_or(1)
+}
+
+/// The held-out CV(RMSE) over the folds' measured and model values, in fold order; the first
+/// fold's error, if any.
+fn pooled_cv(folds: impl IntoIterator<Item = Result<(Vec<f64>, Vec<f64>)>>) -> Result<f64> {
+    let (mut meas, mut model) = (Vec::new(), Vec::new());
+    for r in folds {
+        let (m, p) = r?;
+        meas.extend(m);
+        model.extend(p);
+    }
+    Ok(cv_rmse_pct(&meas, &model))
 }
 
 /// [`heldout`] and the fit on all rows ([`crate::fit::fit_params_with`]) of several
@@ -88,9 +107,8 @@ pub(crate) fn heldout_and_fit_all(
     opts: &FitOptions,
     started: &(dyn Fn(usize) + Sync),
 ) -> Vec<Result<(f64, FitResult)>> {
-    let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
     // per candidate the fit on all rows first (it has the most rows), then the folds
-    let per = 1 + nf;
+    let per = 1 + fold_count(labels);
     let done = side_by_side(items.len() * per, threads, &|j, inner| {
         let (i, k) = (j / per, j % per);
         let (cfg, free) = items[i];
@@ -110,13 +128,15 @@ pub(crate) fn heldout_and_fit_all(
     let mut out = Vec::with_capacity(items.len());
     let mut jobs = done.into_iter();
     for _ in items {
-        out.push(collect(jobs.by_ref().take(per)));
+        // each candidate's jobs taken whole, also where its result stops at an error
+        let own: Vec<Job> = jobs.by_ref().take(per).collect();
+        out.push(collect(own));
     }
     out
 }
 
-/// One job of [`heldout_with`] and [`heldout_and_fit_all`]: a fold's measured and held-out
-/// model values, or the fit on all rows.
+/// One job of [`heldout_and_fit_all`]: a fold's measured and held-out model values, or the
+/// fit on all rows.
 enum Job {
     Fold(Result<(Vec<f64>, Vec<f64>)>),
     Full(Box<Result<FitResult>>),
@@ -124,43 +144,19 @@ enum Job {
 
 /// The held-out CV(RMSE) of one candidate's fold jobs (in fold order) and its fit on all rows;
 /// the first error in the order of the sequential code: the folds', then the full fit's.
-fn collect(jobs: impl Iterator<Item = Job>) -> Result<(f64, FitResult)> {
-    let (mut meas, mut model, mut fitted) = (Vec::new(), Vec::new(), None);
-    for d in jobs {
-        match d {
-            Job::Fold(r) => {
-                let (m, p) = r?;
-                meas.extend(m);
-                model.extend(p);
-            }
-            Job::Full(r) => fitted = Some(*r),
+fn collect(jobs: Vec<Job>) -> Result<(f64, FitResult)> {
+    let mut fitted = None;
+    let h = pooled_cv(jobs.into_iter().filter_map(|d| match d {
+        Job::Fold(r) => Some(r),
+        Job::Full(r) => {
+            fitted = Some(*r);
+            None
         }
-    }
+    }))?;
     match fitted {
-        Some(f) => Ok((cv_rmse_pct(&meas, &model), f?)),
+        Some(f) => Ok((h, f?)),
         None => Err(CreepError::State("the fit on all rows did not run".into())),
     }
-}
-
-fn heldout_with(
-    cfg: &Config,
-    data: &Dataset,
-    labels: &[usize],
-    free: &[FreeParam],
-    threads: usize,
-    opts: &FitOptions,
-) -> Result<f64> {
-    let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
-    let done = side_by_side(nf, threads, &|f, inner| {
-        fold(cfg, data, labels, free, f, inner, opts)
-    });
-    let (mut meas, mut model) = (Vec::new(), Vec::new());
-    for r in done {
-        let (m, p) = r?;
-        meas.extend(m);
-        model.extend(p);
-    }
-    Ok(cv_rmse_pct(&meas, &model))
 }
 
 /// Fold `f`'s measured values and the model fitted on the other folds there (empty when the

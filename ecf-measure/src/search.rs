@@ -16,7 +16,7 @@
 
 use crate::evaluate::{predict_with, Prediction};
 use crate::fit::{fit_params_with, FitOptions, FreeParam};
-use crate::heldout::{heldout, subset, CLAIM_FRACTION};
+use crate::heldout::{fold_count, heldout, subset, CLAIM_FRACTION};
 use crate::measure::Dataset;
 use crate::stats::{cv_rmse_pct, mean_sd};
 use creep_core::config::Config;
@@ -325,7 +325,7 @@ impl Searcher<'_> {
     /// The baseline fitted on each training fold, once: (train, test, fitted configuration).
     fn folds(&self) -> Result<Vec<(Dataset, Dataset, Config)>> {
         let (cfg, data, labels, base_free) = (self.cfg, self.data, self.labels, self.base_free);
-        let nf = labels.iter().max().map(|m| m + 1).unwrap_or(1);
+        let nf = fold_count(labels);
         let mut folds = Vec::new();
         for f in 0..nf {
             let train = subset(data, &labels.iter().map(|l| *l != f).collect::<Vec<_>>());

@@ -1,6 +1,7 @@
 //! The strips at eta and -eta are computed once while there is no spin (with or without lateral creepage): the results are bit-identical to computing every strip, through lateral creepage, spin, reversal, standstill, long steps, lift-off and a saved and restored state.
+use crate::common::{self, with_grid};
 use creep_core::engine::Scheme;
-use creep_core::{Config, Grid, Inputs, Model};
+use creep_core::{Inputs, Model};
 
 type Row = [u64; 8];
 
@@ -27,12 +28,7 @@ fn run(
     mirror: bool,
     threads: usize,
 ) -> (Vec<Row>, Vec<u8>) {
-    let mut cfg = Config::preset(preset).expect("preset");
-    cfg.grid = Grid {
-        nx: grid.0,
-        ny: grid.1,
-    };
-    let mut c = Model::new(&cfg).expect("model");
+    let mut c = Model::new(&with_grid(common::preset(preset), grid.0, grid.1)).expect("model");
     c.set_scheme(scheme);
     c.set_threads(threads).expect("threads");
     match &mut c {

@@ -112,6 +112,16 @@ pub(super) enum Bound {
     Upper,
 }
 
+impl Bound {
+    /// This bound of the interval `(lo, hi)`.
+    pub(super) fn of(self, (lo, hi): (f64, f64)) -> f64 {
+        match self {
+            Bound::Lower => lo,
+            Bound::Upper => hi,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -466,8 +466,7 @@ impl Solver<'_> {
         for (k, id) in self.free.iter().enumerate() {
             match stuck[k] {
                 Some(b) => {
-                    let (lo, hi) = id.bounds(self.cfg);
-                    let v = if b == Bound::Lower { lo } else { hi };
+                    let v = b.of(id.bounds(self.cfg));
                     if !v.is_finite() {
                         return Ok(None);
                     }
@@ -481,18 +480,7 @@ impl Solver<'_> {
             }
         }
         if free.is_empty() {
-            self.evals.set(self.evals.get() + 1);
-            let Ok(values) = (self.model)(&cfg) else {
-                return Ok(None);
-            };
-            let cv = cv_rmse_pct(self.meas, &values);
-            return Ok(Some(Run {
-                config: cfg,
-                values,
-                cv,
-                termination: first.termination.clone(),
-                unconverged: first.unconverged,
-            }));
+            return Ok(self.evaluated(cfg, first));
         }
         let x0: Vec<f64> = free.iter().map(|id| id.get(&cfg)).collect();
         let reduced = Solver {
@@ -532,13 +520,25 @@ impl Solver<'_> {
             if id.set(&mut c, v).is_err() {
                 return false;
             }
-            self.evals.set(self.evals.get() + 1);
-            match (self.model)(&c) {
-                // worse beyond the last digits: on a plateau (a bound far out, where the model
-                // no longer depends on the parameter) the bound is no optimum of the data
-                Ok(values) => cv_rmse_pct(self.meas, &values) > at.cv * (1.0 + PLATEAU),
-                Err(_) => false,
-            }
+            // worse beyond the last digits: on a plateau (a bound far out, where the model no
+            // longer depends on the parameter) the bound is no optimum of the data
+            self.evaluated(c, at)
+                .is_some_and(|r| r.cv > at.cv * (1.0 + PLATEAU))
+        })
+    }
+
+    /// The model at `config`, counted as one evaluation, as a run that stopped as `like` did;
+    /// None where the model fails there.
+    fn evaluated(&self, config: Config, like: &Run) -> Option<Run> {
+        self.evals.set(self.evals.get() + 1);
+        let values = (self.model)(&config).ok()?;
+        let cv = cv_rmse_pct(self.meas, &values);
+        Some(Run {
+            config,
+            values,
+            cv,
+            termination: like.termination.clone(),
+            unconverged: like.unconverged,
         })
     }
 
@@ -548,26 +548,17 @@ impl Solver<'_> {
         let free = self.free;
         for (k, b) in self.stuck_at(&best.config).into_iter().enumerate() {
             let Some(b) = b else { continue };
-            let (lo, hi) = free[k].bounds(self.cfg);
-            let v = if b == Bound::Lower { lo } else { hi };
+            let v = b.of(free[k].bounds(self.cfg));
             if !v.is_finite() || free[k].get(&best.config) == v {
                 continue;
             }
             let mut c = best.config.clone();
             free[k].set(&mut c, v)?;
-            self.evals.set(self.evals.get() + 1);
-            if let Ok(values) = (self.model)(&c) {
-                let cv = cv_rmse_pct(self.meas, &values);
+            if let Some(r) = self.evaluated(c, &best) {
                 // no worse beyond rounding: a parameter within 1e-15 of its bound can move the
                 // model's values in their last bits either way (measured: 6e-15 relative)
-                if cv <= best.cv * (1.0 + ROUNDING) {
-                    best = Run {
-                        config: c,
-                        values,
-                        cv,
-                        termination: best.termination.clone(),
-                        unconverged: best.unconverged,
-                    };
+                if r.cv <= best.cv * (1.0 + ROUNDING) {
+                    best = r;
                 }
             }
         }
