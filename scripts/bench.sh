@@ -13,7 +13,8 @@
 #       and nothing else) and then runs scripts/accuracy-docs.sh (the Pareto PNGs in
 #       docs/img/accuracy/ and the tolerance table of docs/fmu.md)
 #       ECF_ACCURACY_COSTS_FROM=earlier.csv: errors from this run, each row's cost kept from the
-#       earlier table (for a change that leaves the costs within their noise; the header says so)
+#       earlier table (for a change that leaves the costs within their noise; the header says so;
+#       a row missing there ends the run before its first case)
 #   bash scripts/bench.sh --only consistency   drift of the steady state under transient steps at
 #       constant inputs, per preset, speed, grid and communication step (about 10 s)
 #   bash scripts/bench.sh --only steady-grid   each grid's largest error of the steady curves

@@ -32,10 +32,10 @@
 //!
 //! `ECF_ACCURACY_COSTS_FROM=path` keeps the costs of an earlier table: every row's
 //! `wall_per_sim` is taken from the row of that file with the same preset, case, grid and
-//! scheme (a row missing there ends the run), and the header says so. For re-measuring the
-//! errors after a change that leaves the costs within their noise, on a machine whose speed
-//! drifted since (the costs are wall times: on 2026-11-29 every scheme, the unchanged ones
-//! too, ran 1.37-1.43x slower than on 2026-11-26).
+//! scheme (a row missing there ends the run before its first case), and the header says
+//! so. For re-measuring the errors after a change that leaves the costs within their noise,
+//! on a machine whose speed drifted since (the costs are wall times: on 2026-11-29 every
+//! scheme, the unchanged ones too, ran 1.37-1.43x slower than on 2026-11-26).
 use creep_core::engine::Scheme;
 use creep_core::{Config, Contact, Grid, Inputs};
 use std::time::Instant;
@@ -146,6 +146,9 @@ pub fn cases() -> Vec<Case> {
     }
     v
 }
+
+/// The schemes of the table, in its order.
+const SCHEMES: [Scheme; 3] = [Scheme::CellsMarch, Scheme::Continuous, Scheme::CellsHigher];
 
 /// A response: per communication point F_x (N), T_max - T_bulk (K), P_fric (W); and the wall time of the run (s).
 pub struct Response {
@@ -289,28 +292,45 @@ pub fn table(quick: bool, finest: usize) {
         measured = format!("{measured}; errors from this run, costs (wall_per_sim) kept from the table measured on {when} ({path})");
         rows
     });
-    let cost_of = |case: &Case, nx: usize, ny: usize, scheme: Scheme, measured_cost: f64| {
-        let Some(rows) = &kept else {
-            return measured_cost;
+    // the kept cost of a case, grid and scheme (None: the earlier table has no such row)
+    let kept_cost =
+        |rows: &[creep_core::tolerance::Row], case: &Case, nx: usize, ny: usize, scheme: Scheme| {
+            rows.iter()
+                .find(|r| {
+                    r.preset == case.preset
+                        && r.kind == case.kind_name()
+                        && r.v == case.v
+                        && (r.dt_ms - case.dt * 1e3).abs() < 1e-9
+                        && (r.nx, r.ny) == (nx, ny)
+                        && r.scheme == scheme
+                })
+                .map(|r| r.cost)
         };
-        rows.iter()
-            .find(|r| {
-                r.preset == case.preset
-                    && r.kind == case.kind_name()
-                    && r.v == case.v
-                    && (r.dt_ms - case.dt * 1e3).abs() < 1e-9
-                    && (r.nx, r.ny) == (nx, ny)
-                    && r.scheme == scheme
-            })
-            .map(|r| r.cost)
-            .unwrap_or_else(|| {
-                eprintln!(
-                    "ecf-bench: ECF_ACCURACY_COSTS_FROM has no row for {} {nx}x{ny} {}",
-                    case.name(),
-                    scheme.name()
-                );
-                std::process::exit(1);
-            })
+    // every row the run will need is looked up before the first case runs: a missing one
+    // ends the run at once, not after minutes of the cases before it
+    if let Some(rows) = &kept {
+        let missing: Vec<String> = cases
+            .iter()
+            .flat_map(|case| grids.iter().map(move |&g| (case, g)))
+            .flat_map(|(case, (nx, ny))| SCHEMES.iter().map(move |&s| (case, nx, ny, s)))
+            .filter(|&(case, nx, ny, s)| kept_cost(rows, case, nx, ny, s).is_none())
+            .map(|(case, nx, ny, s)| format!("{} {nx}x{ny} {}", case.name(), s.name()))
+            .collect();
+        if !missing.is_empty() {
+            eprintln!(
+                "ecf-bench: ECF_ACCURACY_COSTS_FROM has no row for {} of the run's rows, e.g. {}",
+                missing.len(),
+                missing[..missing.len().min(3)].join("; ")
+            );
+            std::process::exit(1);
+        }
+    }
+    let cost_of = |case: &Case, nx: usize, ny: usize, scheme: Scheme, measured_cost: f64| {
+        match &kept {
+            // checked above: every row is there
+            Some(rows) => kept_cost(rows, case, nx, ny, scheme).unwrap_or(measured_cost),
+            None => measured_cost,
+        }
     };
     for case in &cases {
         let sim = case.steps() as f64 * case.dt;
@@ -340,7 +360,7 @@ pub fn table(quick: bool, finest: usize) {
             "x real t"
         );
         for (gi, &(nx, ny)) in grids.iter().enumerate() {
-            for scheme in [Scheme::CellsMarch, Scheme::Continuous, Scheme::CellsHigher] {
+            for scheme in SCHEMES {
                 let r;
                 let resp = match scheme {
                     Scheme::CellsMarch => &cells[gi],
