@@ -196,7 +196,7 @@ pub(crate) struct OwnedRawState {
 
 /// The part of the current cell a strip has travelled since its bristles' last lattice node
 /// (the whole-cell commit, docs/model.md section 3): sums over the steps' pieces of it.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Partial {
     /// Distance travelled, m.
     pub d: f64,

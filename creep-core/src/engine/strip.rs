@@ -153,26 +153,30 @@ impl Contact {
     }
 
     /// True if every strip's state equals its mirror image's about y = 0, bit for bit (see
-    /// [`Self::each_strip`]).
+    /// [`Self::each_strip`]; 0 and -0 differ, so a state that holds both is computed strip by
+    /// strip).
     pub(super) fn strips_equal(&self) -> bool {
         let (ny, nx1) = (self.ny, self.nx + 1);
-        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
+        let bristle = |s: &BristleState| [s.u[0], s.u[1], s.tau[0], s.tau[1], s.sh, s.temp, s.q];
+        let bristles = |a: &[BristleState], b: &[BristleState]| {
+            a.iter()
+                .zip(b)
+                .all(|(x, y)| x.regime == y.regime && same(&bristle(x), &bristle(y)))
+        };
+        let accs =
+            |a: &[[f64; N_KERNEL]], b: &[[f64; N_KERNEL]]| a.iter().zip(b).all(|(x, y)| same(x, y));
+        let part = |p: &super::Partial| [p.d, p.h, p.dcx, p.dcy, p.dcs];
         (0..ny / 2).all(|j| {
             let m = ny - 1 - j;
             let (a, b) = (j * nx1..(j + 1) * nx1, m * nx1..(m + 1) * nx1);
             self.head[j] == self.head[m]
-                && same(self.phase[j], self.phase[m])
-                && self.part[j] == self.part[m]
-                && self.st[a.clone()]
-                    .iter()
-                    .zip(&self.st[b.clone()])
-                    .all(|(x, y)| x == y)
-                && self.node_st[a.clone()]
-                    .iter()
-                    .zip(&self.node_st[b.clone()])
-                    .all(|(x, y)| x == y)
-                && self.acc[a.clone()] == self.acc[b.clone()]
-                && self.node_acc[a] == self.node_acc[b]
+                && same(&[self.phase[j]], &[self.phase[m]])
+                && same(&part(&self.part[j]), &part(&self.part[m]))
+                && bristles(&self.st[a.clone()], &self.st[b.clone()])
+                && bristles(&self.node_st[a.clone()], &self.node_st[b.clone()])
+                && accs(&self.acc[a.clone()], &self.acc[b.clone()])
+                && accs(&self.node_acc[a], &self.node_acc[b])
         })
     }
 
