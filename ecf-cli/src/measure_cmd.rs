@@ -1,4 +1,4 @@
-//! `ecf compare`, `ecf fit` and `ecf diagnose`: the measurement loop's commands, for creep measurements and high-pressure-torsion curves, and the helpers `ecf report` shares (plots, warnings, atomic writes).
+//! `ecf compare`, `ecf fit` and `ecf diagnose`: the measurement loop's commands, for creep measurements and high-pressure-torsion curves, and the helpers `ecf report` shares (plots, warnings, writing `--out`).
 
 use crate::plots::{xy_plot, Set, Style};
 use creep_core::params::{self, P};
@@ -352,7 +352,7 @@ impl FitRequest<'_> {
     }
 }
 
-/// Fits, writes the fitted configuration atomically and reports.
+/// Fits, writes the fitted configuration (`write_out`) and reports.
 pub fn fit(
     cfg: &Config,
     data: &Dataset,
@@ -414,7 +414,7 @@ pub fn diagnose(
             let text = serde_json::to_string_pretty(c)
                 .map_err(|e| CreepError::State(e.to_string()))?
                 + "\n";
-            write_atomically(p, "json.tmp", text.as_bytes())?;
+            write_out(p, "json.tmp", text.as_bytes())?;
             Some(p)
         }
         _ => None,
@@ -502,20 +502,95 @@ pub fn diagnose(
     Ok(())
 }
 
-/// Writes `out` through a temporary file beside it (extension `ext`), renamed at the end; the
-/// temporary file is removed on an error or an interrupt, and `out` is never half-written.
-pub(crate) fn write_atomically(out: &Path, ext: &str, bytes: &[u8]) -> Result<(), CreepError> {
-    let tmp = crate::cleanup::Pending::new(out.with_extension(ext));
+/// Writes `bytes` to the `--out` path `out`, by what is there:
+/// - nothing or a regular file: through a temporary file beside it (extension `ext`), renamed
+///   over it at the end; the temporary file is removed on an error or an interrupt, and `out`
+///   is never half-written;
+/// - a symbolic link: the link stays and the file it leads to is written as above (for a
+///   dangling link, the file it names is created, when its folder exists);
+/// - a device, FIFO or socket (`/dev/null`, the pipe `/dev/fd/N` of a process substitution),
+///   also behind a link: the bytes are written straight through it, with no temporary file;
+/// - a directory: an error, and nothing is written.
+pub(crate) fn write_out(out: &Path, ext: &str, bytes: &[u8]) -> Result<(), CreepError> {
+    let err = |message: String| CreepError::Config {
+        source_name: format!("--out {}", out.display()),
+        message,
+    };
+    let is_link = std::fs::symlink_metadata(out).is_ok_and(|m| m.file_type().is_symlink());
+    // what `out` leads to; a path that cannot be examined (missing, or with a file where a
+    // folder should be) goes to the temporary file, whose creation says what is wrong
+    let kind = match std::fs::metadata(out) {
+        Ok(m) => Some(m),
+        Err(e) if is_link && e.kind() != std::io::ErrorKind::NotFound => {
+            return Err(err(format!("cannot follow the symbolic link: {e}")))
+        }
+        Err(_) => None,
+    };
+    let file = match kind {
+        Some(m) if m.is_dir() => return Err(err("is a directory; expected a file path".into())),
+        Some(m) if !m.is_file() => {
+            // a device, FIFO or socket: written in place (the rename would replace it)
+            let mut f = std::fs::OpenOptions::new()
+                .write(true)
+                .open(out)
+                .map_err(|e| err(format!("cannot open for writing: {e}")))?;
+            return f
+                .write_all(bytes)
+                .and_then(|()| f.flush())
+                .map_err(|e| err(format!("cannot write: {e}")));
+        }
+        Some(_) if is_link => std::fs::canonicalize(out)
+            .map_err(|e| err(format!("cannot follow the symbolic link: {e}")))?,
+        None if is_link => dangling_target(out).map_err(err)?,
+        _ => out.to_path_buf(),
+    };
+    let tmp = crate::cleanup::Pending::new(file.with_extension(ext));
     std::fs::write(tmp.path(), bytes).map_err(|e| CreepError::Config {
         source_name: tmp.path().display().to_string(),
         message: format!("cannot write: {e}"),
     })?;
-    std::fs::rename(tmp.path(), out).map_err(|e| CreepError::Config {
-        source_name: out.display().to_string(),
+    std::fs::rename(tmp.path(), &file).map_err(|e| CreepError::Config {
+        source_name: file.display().to_string(),
         message: format!("cannot write: {e}"),
     })?;
     tmp.done();
     Ok(())
+}
+
+/// The missing file a dangling symbolic link `link` leads to (through further links), or why
+/// it cannot be created: its folder does not exist, or the links go round.
+fn dangling_target(link: &Path) -> Result<std::path::PathBuf, String> {
+    let mut p = link.to_path_buf();
+    // as many links as Linux follows in one path
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let t = std::fs::read_link(&p)
+                    .map_err(|e| format!("cannot read the symbolic link {}: {e}", p.display()))?;
+                // a relative target is relative to the link's folder
+                p = match p.parent() {
+                    Some(dir) if t.is_relative() => dir.join(t),
+                    _ => t,
+                };
+            }
+            Ok(_) => return Ok(p),
+            Err(_) => {
+                let dir = match p.parent() {
+                    Some(d) if !d.as_os_str().is_empty() => d,
+                    _ => Path::new("."),
+                };
+                return if dir.is_dir() {
+                    Ok(p)
+                } else {
+                    Err(format!(
+                        "a symbolic link to {}, whose folder does not exist",
+                        p.display()
+                    ))
+                };
+            }
+        }
+    }
+    Err("too many levels of symbolic links".into())
 }
 
 /// Reads a measurement file once, as its kind (ecf-measure's `file_kind`: a header with
@@ -632,7 +707,7 @@ pub fn compare_hpt(
     Ok(())
 }
 
-/// Fits the layer parameters to high-pressure-torsion curves (written atomically).
+/// Fits the layer parameters to high-pressure-torsion curves (written by `write_out`).
 pub fn fit_hpt(
     cfg: &Config,
     path: &Path,
@@ -701,7 +776,7 @@ fn fit_record(
     })
 }
 
-/// Writes the fitted configuration atomically (temporary file, then rename) and reports the fit.
+/// Writes the fitted configuration (`write_out`: atomically for a file) and reports the fit.
 fn report_fit(
     r: &ecf_measure::fit::FitResult,
     model_warnings: &[ModelWarning],
@@ -715,7 +790,7 @@ fn report_fit(
     }
     let text =
         serde_json::to_string_pretty(&doc).map_err(|e| CreepError::State(e.to_string()))? + "\n";
-    write_atomically(out, "json.tmp", text.as_bytes())?;
+    write_out(out, "json.tmp", text.as_bytes())?;
     for m in &r.warnings {
         eprintln!("warning: {m}");
     }

@@ -1,6 +1,6 @@
 //! `ecf report`: one self-contained HTML page of the comparison, the fitted parameters, the residuals and the diagnosis, for one configuration or two side by side.
 
-use crate::measure_cmd::{ge_1pct_text, write_atomically, write_plots};
+use crate::measure_cmd::{ge_1pct_text, write_out, write_plots};
 use creep_core::{Config, CreepError};
 use ecf_measure::evaluate::{compare as cmp, predict_warned};
 use ecf_measure::measure::Dataset;
@@ -153,7 +153,7 @@ fn fitted_table(path: &str) -> String {
     h
 }
 
-/// Writes the self-contained HTML report (atomically).
+/// Writes the self-contained HTML report (`write_out`).
 pub fn report(
     cfg: &Config,
     name: &str,
@@ -237,5 +237,5 @@ pub fn report(
         n = data.rows.len(),
         ver = env!("CARGO_PKG_VERSION"),
     );
-    write_atomically(out, "html.tmp", html.as_bytes())
+    write_out(out, "html.tmp", html.as_bytes())
 }
