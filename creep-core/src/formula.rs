@@ -1,7 +1,7 @@
-//! User-written effects without compiling: a formula that scales a material function (tau_c1, tau_c2, L_e, L_p or mu) by an expression.
+//! User-written effects without compiling: a formula that scales a material function (tau_c1, tau_c2, both strengths, L_e, L_p or mu) by an expression.
 //!
 //! Configuration entry:
-//! `{"name": N, "target": "tau_c1"|"tau_c2"|"L_e"|"L_p"|"mu", "factor": "EXPRESSION",
+//! `{"name": N, "target": "tau_c1"|"tau_c2"|"strengths"|"L_e"|"L_p"|"mu", "factor": "EXPRESSION",
 //!   "params": {"k": {"value": v, "min": lo, "max": hi}}}`.
 //! The expression may use numbers, `+ - * / ^`, parentheses, the functions `exp ln sqrt abs
 //! tanh min max`, the formula's own parameters, the bristle's local state `p_GPa` (normal

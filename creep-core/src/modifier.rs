@@ -32,6 +32,9 @@ pub enum Target {
     Lp,
     /// Coulomb friction coefficient.
     Mu,
+    /// Both layer strengths, tau_c1 and tau_c2, by the same factor: a change of the layer's
+    /// strength as a whole.
+    Strengths,
 }
 
 impl Target {
@@ -43,11 +46,12 @@ impl Target {
             "L_e" => Target::Le,
             "L_p" => Target::Lp,
             "mu" => Target::Mu,
+            "strengths" => Target::Strengths,
             _ => {
                 return Err(CreepError::Unknown {
                     kind: "formula target".into(),
                     name: s.into(),
-                    accepted: "tau_c1, tau_c2, L_e, L_p, mu".into(),
+                    accepted: "tau_c1, tau_c2, strengths (tau_c1 and tau_c2), L_e, L_p, mu".into(),
                 })
             }
         })
@@ -60,6 +64,20 @@ impl Target {
             Target::Le => "L_e",
             Target::Lp => "L_p",
             Target::Mu => "mu",
+            Target::Strengths => "strengths",
+        }
+    }
+    /// Multiplies the factor `f` into the per-function factors `fac` (indexed by
+    /// [`Target::TauC1`] ... [`Target::Mu`] as `usize`): [`Target::Strengths`] scales both
+    /// strengths.
+    #[inline]
+    pub fn scale(self, fac: &mut [f64; 5], f: f64) {
+        match self {
+            Target::Strengths => {
+                fac[Target::TauC1 as usize] *= f;
+                fac[Target::TauC2 as usize] *= f;
+            }
+            t => fac[t as usize] *= f,
         }
     }
 }

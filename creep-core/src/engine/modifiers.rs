@@ -124,9 +124,8 @@ impl Modifiers {
         for &k in &self.order {
             let m = &self.list[k];
             if !m.uses_local_state() {
-                fstatic[m.target() as usize] *= m
-                    .factor(&LocalState::default(), &op, &self.cols[k])
-                    .max(0.0);
+                let f = m.factor(&LocalState::default(), &op, &self.cols[k]);
+                m.target().scale(&mut fstatic, f.max(0.0));
             }
         }
         self.fstatic = fstatic;
@@ -142,7 +141,8 @@ impl Modifiers {
             let op = self.operating_point();
             for &k in &self.local {
                 let m = &self.list[k];
-                fac[m.target() as usize] *= m.factor(local, &op, &self.cols[k]).max(0.0);
+                let f = m.factor(local, &op, &self.cols[k]);
+                m.target().scale(&mut fac, f.max(0.0));
             }
         }
         fac

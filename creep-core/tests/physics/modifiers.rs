@@ -113,3 +113,45 @@ fn factors_multiply_formulas_first_whatever_the_list_order() {
     assert!(matches!(cfg.modifiers[0], creep_core::AnyModifier::Rust(_)));
     assert_eq!(run(&cfg), want);
 }
+
+#[test]
+fn a_factor_on_both_strengths_is_the_same_factor_on_each() {
+    // one formula effect on "strengths" against the same factor written twice, on tau_c1 and
+    // on tau_c2: the same forces to the bit, for an operating-point and a local factor; a
+    // factor on one strength alone differs
+    let cfg = |effects: &str| {
+        Config::from_json_str(
+            &format!(r#"{{"preset": "dry", "grid": {{"nx": 20, "ny": 5}}, "formula_effects": [{effects}]}}"#),
+            "strengths",
+        )
+        .expect("config")
+    };
+    let run = |cfg: &Config| {
+        [0.002, 0.03, 0.3].map(|cx| {
+            let o = Model::new(cfg)
+                .unwrap()
+                .steady(&Inputs {
+                    cx,
+                    v: 20.0,
+                    fn_n: 90e3,
+                    ..Inputs::default()
+                })
+                .unwrap();
+            [o.fx.to_bits(), o.t_max.to_bits()]
+        })
+    };
+    for factor in ["0.8 + 0.004 * v_mps", "1 / (1 + (T_C - 20) / 300)"] {
+        let both = cfg(&format!(
+            r#"{{"name": "s", "target": "strengths", "factor": "{factor}"}}"#
+        ));
+        let each = cfg(&format!(
+            r#"{{"name": "a", "target": "tau_c1", "factor": "{factor}"}},
+               {{"name": "b", "target": "tau_c2", "factor": "{factor}"}}"#
+        ));
+        let one = cfg(&format!(
+            r#"{{"name": "b", "target": "tau_c2", "factor": "{factor}"}}"#
+        ));
+        assert_eq!(run(&both), run(&each), "{factor}");
+        assert_ne!(run(&both), run(&one), "{factor}");
+    }
+}
