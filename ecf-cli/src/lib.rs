@@ -237,7 +237,11 @@ fn run(cli: Cli) -> Result<(), CreepError> {
         Cmd::Compare { d, json, plots } => compare(&d, json, plots.as_deref(), &mut w)?,
         Cmd::Diagnose { d, json, out } => {
             let (cfg, data) = d.load_rows()?;
-            measure_cmd::diagnose(&cfg, &data, d.threads, json, out.as_deref(), &mut w)?;
+            let o = ecf_measure::diagnose::Options {
+                loop_grid: d.grid.is_none(),
+                ..ecf_measure::diagnose::Options::new(d.threads)
+            };
+            measure_cmd::diagnose(&cfg, &data, &o, json, out.as_deref(), &mut w)?;
         }
         Cmd::Report {
             d,

@@ -383,29 +383,46 @@ pub fn fit(
     report_fit(&r, &warnings, req.out, req.json, w)
 }
 
+/// A progress message `STAGE [done/total]` split into its parts.
+fn counted_stage(stage: &str) -> Option<(&str, u64, u64)> {
+    let (msg, rest) = stage.rsplit_once(" [")?;
+    let (done, total) = rest.strip_suffix(']')?.split_once('/')?;
+    Some((msg, done.parse().ok()?, total.parse().ok()?))
+}
+
 /// Diagnoses and reports.
 pub fn diagnose(
     cfg: &Config,
     data: &Dataset,
-    threads: usize,
+    o: &ecf_measure::diagnose::Options,
     json: bool,
     out: Option<&Path>,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
     let bar = indicatif::ProgressBar::new_spinner();
-    bar.set_style(
+    let spinner =
         indicatif::ProgressStyle::with_template("{spinner} diagnosing: {msg} [{elapsed}]")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
-    );
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner());
+    let counted = indicatif::ProgressStyle::with_template(
+        "{spinner} diagnosing: {msg} {bar:20} {pos}/{len} [{elapsed}]",
+    )
+    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+    bar.set_style(spinner.clone());
     bar.enable_steady_tick(std::time::Duration::from_millis(200));
-    let progress = |stage: &str| {
-        if stage.starts_with("form ") || stage.starts_with("the best forms") {
-            bar.set_message(format!("searching formula forms, {stage}"))
-        } else {
-            bar.set_message(format!("refitting with {stage}"))
+    // a stage that ends in "[done/total]" shows a bar, the others a spinner
+    let progress = |stage: &str| match counted_stage(stage) {
+        Some((msg, done, total)) => {
+            bar.set_style(counted.clone());
+            bar.set_length(total);
+            bar.set_position(done);
+            bar.set_message(msg.to_string());
+        }
+        None => {
+            bar.set_style(spinner.clone());
+            bar.set_message(stage.to_string());
         }
     };
-    let d = ecf_measure::diagnose::diagnose(cfg, data, threads, &progress)?;
+    let d = ecf_measure::diagnose::diagnose_opts(cfg, data, o, &progress)?;
     bar.finish_and_clear();
     // the proposed configuration, written before anything is reported
     let proposed = d.search.as_ref().and_then(|s| s.proposed_config.as_ref());
@@ -432,6 +449,9 @@ pub fn diagnose(
         cfg.effects.to_vec()
     )
     .map_err(io)?;
+    if let Some(g) = &d.model_grid {
+        writeln!(w, "grid: {g}").map_err(io)?;
+    }
     writeln!(w, "CV(RMSE) as given {:.2} %; held-out (folds by {}, {} folds) with its own parameters refitted {:.2} %", d.baseline_cv_rmse_pct, d.folds_by, d.folds, d.baseline_heldout_cv_rmse_pct).map_err(io)?;
     if d.catalogue_all_on {
         writeln!(
@@ -460,27 +480,29 @@ pub fn diagnose(
         .map_err(io)?;
     }
     if let Some(s) = &d.search {
+        let c = &s.cost;
         writeln!(
             w,
-            "\nformula forms ({} of {} tried in {:.1} s), best held-out error first:",
-            s.tried, s.total, s.seconds
+            "\nformula forms: {} of {} screened, the best {} refitted on the folds with their own parameters and the target's level, the best {} of those with every free parameter; {:.1} s on {} threads (model evaluations, one row at one configuration: needed factors {} in {:.1} s, shortlist {} in {:.1} s, finalists {} in {:.1} s, {:.2} ms each on one thread; screening {:.1} s). Best first:",
+            s.tried, s.total, c.shortlisted, c.finalists, s.seconds, c.threads, c.inverse_evaluations, c.inverse_s, c.shortlist_evaluations, c.shortlist_s, c.final_evaluations, c.final_s, c.ms_per_evaluation(), c.screen_s
         )
         .map_err(io)?;
-        for f in s.forms.iter().take(5) {
-            let k = if f.k.is_finite() {
-                format!("k = {:+.4} ± {:.4}", f.k, f.k_stderr)
-            } else {
-                "k not refitted".to_string()
-            };
+        for f in s.forms.iter().take(8) {
             let h = if f.heldout_cv_rmse_pct.is_finite() {
                 format!("held-out {:6.2} %", f.heldout_cv_rmse_pct)
+            } else if f.shortlist_cv_rmse_pct.is_finite() {
+                format!("shortlist {:6.2} %", f.shortlist_cv_rmse_pct)
             } else {
                 format!("screened {:6.2} %", f.screen_cv_rmse_pct)
             };
             writeln!(
                 w,
-                "  {:<7} x {:<10} in {:<10} {h}  {k}\n    factor {}",
-                f.target, f.shape, f.variable, f.factor
+                "  {:<9} x {:<10} in {:<10} {h}  {}\n    factor {}",
+                f.target,
+                f.shape,
+                f.variable,
+                f.params_text(),
+                f.factor
             )
             .map_err(io)?;
         }

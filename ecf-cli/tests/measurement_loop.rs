@@ -234,9 +234,15 @@ fn diagnose_report_does_not_depend_on_the_thread_count() {
             .as_object_mut()
             .expect("a search of formula forms");
         assert!(s.remove("seconds").is_some_and(|t| t.as_f64().is_some()));
-        // and the verdict's "... tried in N s"
+        assert!(s
+            .remove("cost")
+            .is_some_and(|c| c["threads"].as_u64().is_some()));
+        // and the verdict's "... with every free parameter, in N s"
         let verdict = v["verdict"].as_str().expect("verdict").to_string();
-        let at = verdict.find(" tried in ").expect("the search's time") + 10;
+        let at = verdict
+            .find("every free parameter, in ")
+            .expect("the search's time")
+            + 25;
         let end = at + verdict[at..].find(" s").expect("seconds");
         v["verdict"] = format!("{}{}", &verdict[..at], &verdict[end..]).into();
         v.to_string()
@@ -548,11 +554,21 @@ fn diagnose_proposes_a_formula_form_and_writes_a_configuration_fit_takes() {
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(
-        out.contains("formula forms (") && out.contains("Proposed: tau_c1 x reciprocal in v_mps"),
+        out.contains("formula forms: ") && out.contains("Proposed: tau_c1 x "),
         "{out}"
     );
+    assert!(out.contains("in v_mps (factor "), "{out}");
     assert!(out.contains("written to"), "{out}");
-    // the proposed configuration is taken by ecf fit as it stands
+    // the proposed configuration is taken by ecf fit as it stands, its form's parameters free
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&prop).unwrap()).unwrap();
+    let free: Vec<String> = j["formula_effects"][0]["params"]
+        .as_object()
+        .expect("the form's parameters")
+        .keys()
+        .map(|k| format!("form_tau_c1.{k}"))
+        .collect();
+    let free = free.join(",");
     let fitted = d.join("fitted.json");
     let (code, fit, err) = ecf(&[
         "fit",
@@ -560,7 +576,7 @@ fn diagnose_proposes_a_formula_form_and_writes_a_configuration_fit_takes() {
         "--config",
         prop.to_str().unwrap(),
         "--free",
-        "form_tau_c1.k",
+        &free,
         "--out",
         fitted.to_str().unwrap(),
         "--json",

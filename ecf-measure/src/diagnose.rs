@@ -17,11 +17,10 @@ pub use crate::heldout::CLAIM_FRACTION;
 use crate::heldout::{fold_count, folds, heldout, heldout_and_fit_all};
 use crate::measure::Dataset;
 pub use crate::residuals::{correlations, Correlation};
-use crate::stats::{cv_rmse_pct, mean_sd};
+use crate::stats::cv_rmse_pct;
 use creep_core::config::{Config, ModelKind};
 use creep_core::effects::{self, Effect};
 use creep_core::error::Result;
-use creep_core::formula::{FormulaEffect, FormulaParam, Target};
 use creep_core::params::P;
 use creep_core::Modifier;
 
@@ -90,6 +89,9 @@ pub struct Diagnosis {
     /// Warnings the model raised for the rows under the configuration as given (wheel slide,
     /// Péclet condition, ...), counted per series.
     pub warnings: Vec<ModelWarning>,
+    /// Where the diagnosis ran the model on another grid than the configuration's, which and
+    /// why ([`loop_config`]); `None`: on the configuration's.
+    pub model_grid: Option<String>,
 }
 
 /// Parameters an effect brings when it is added.
@@ -154,26 +156,41 @@ fn first_sentence(text: &str) -> &str {
 /// same printed figures).
 pub const FIT_TOLERANCE: f64 = 1e-7;
 
-/// Runs the diagnosis. `progress` receives a short text per stage.
+/// How a diagnosis runs.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Worker threads (the result does not depend on them).
+    pub threads: usize,
+    /// Convergence tolerance of the fits (`None`: the solver's default, as
+    /// [`crate::fit::fit`]); [`FIT_TOLERANCE`] by default.
+    pub fit_tolerance: Option<f64>,
+    /// Time bound of the search of formula forms, s (0: no search).
+    pub search_seconds: f64,
+    /// Run the model on a cheaper grid than the configuration's where the noise of the data
+    /// allows it ([`loop_config`]); `false` keeps the configuration's grid and scheme.
+    pub loop_grid: bool,
+}
+
+impl Options {
+    /// The defaults on `threads` threads.
+    pub fn new(threads: usize) -> Self {
+        Options {
+            threads,
+            fit_tolerance: Some(FIT_TOLERANCE),
+            search_seconds: crate::search::SEARCH_SECONDS,
+            loop_grid: true,
+        }
+    }
+}
+
+/// Runs the diagnosis with the default [`Options`]. `progress` receives a short text per stage.
 pub fn diagnose(
     cfg: &Config,
     data: &Dataset,
     threads: usize,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Diagnosis> {
-    diagnose_with(cfg, data, threads, Some(FIT_TOLERANCE), progress)
-}
-
-/// [`diagnose_with`] with the time bound of the search of formula forms, s (0: no search).
-pub fn diagnose_search(
-    cfg: &Config,
-    data: &Dataset,
-    threads: usize,
-    fit_tolerance: Option<f64>,
-    search_seconds: f64,
-    progress: &(dyn Fn(&str) + Sync),
-) -> Result<Diagnosis> {
-    run(cfg, data, threads, fit_tolerance, search_seconds, progress)
+    diagnose_opts(cfg, data, &Options::new(threads), progress)
 }
 
 /// [`diagnose`] with the fits' convergence tolerance (`None`: the solver's default, as
@@ -185,14 +202,96 @@ pub fn diagnose_with(
     fit_tolerance: Option<f64>,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Diagnosis> {
-    run(
-        cfg,
-        data,
-        threads,
+    let o = Options {
         fit_tolerance,
-        crate::search::SEARCH_SECONDS,
+        ..Options::new(threads)
+    };
+    diagnose_opts(cfg, data, &o, progress)
+}
+
+/// The grids the diagnosis may run instead of a costlier configuration grid, cheapest first:
+/// (cells per strip, strips, largest steady error of f against 640 x 168 cells over
+/// c_x = 0.2-30 % for dry, table4.1 and wet at 5-30 m/s, %), all with the higher-order rules
+/// (`bash scripts/bench.sh --only steady-grid`, second table).
+pub const LOOP_GRIDS: [(usize, usize, f64); 2] = [(20, 5, LOOP_ERR_20X5), (40, 5, LOOP_ERR_40X5)];
+const LOOP_ERR_20X5: f64 = 1.12;
+const LOOP_ERR_40X5: f64 = 0.54;
+
+/// A loop grid is used when its error is at most this fraction of the noise level: it then
+/// adds at most 3 % to the noise in quadrature.
+pub const LOOP_ERROR_OF_NOISE: f64 = 0.25;
+
+/// Relative cost of a grid: its cells, twice for the higher-order rules.
+fn grid_cost(cfg: &Config) -> usize {
+    let k = if cfg.scheme == creep_core::engine::Scheme::CellsHigher {
+        2
+    } else {
+        1
+    };
+    cfg.grid.nx * cfg.grid.ny * k
+}
+
+/// The configuration on the cheapest loop grid ([`LOOP_GRIDS`]) whose error is at most
+/// [`LOOP_ERROR_OF_NOISE`] of the noise level `noise_cv` (%), when that grid costs less than
+/// the configuration's own; `None` otherwise (and for FASTSIM and Polach, whose steady runs
+/// are cheap). With the reason, in words.
+pub fn loop_config(cfg: &Config, noise_cv: Option<f64>) -> Option<(Config, String)> {
+    if cfg.model == ModelKind::Polach || cfg.has(Effect::Coulomb) {
+        return None;
+    }
+    let noise = noise_cv?;
+    let own = grid_cost(cfg);
+    LOOP_GRIDS.iter().find_map(|&(nx, ny, err)| {
+        let mut c = cfg.clone();
+        c.grid = creep_core::config::Grid { nx, ny };
+        c.scheme = creep_core::engine::Scheme::CellsHigher;
+        (err <= LOOP_ERROR_OF_NOISE * noise && grid_cost(&c) < own).then(|| {
+            let why = format!(
+                "the model runs on {nx}x{ny} cells-ho instead of the configuration's {}x{} {}: {:.1} times cheaper, within {err} % of the converged steady curves, a quarter of the noise level ({noise:.2} %) or less; --grid keeps a grid of your choice",
+                cfg.grid.nx,
+                cfg.grid.ny,
+                cfg.scheme.name(),
+                own as f64 / grid_cost(&c) as f64
+            );
+            (c, why)
+        })
+    })
+}
+
+/// Runs the diagnosis with options `o`.
+pub fn diagnose_opts(
+    cfg: &Config,
+    data: &Dataset,
+    o: &Options,
+    progress: &(dyn Fn(&str) + Sync),
+) -> Result<Diagnosis> {
+    let noise = crate::noise::estimate(data);
+    let looped = if o.loop_grid {
+        loop_config(cfg, noise.as_ref().map(|n| n.cv_rmse_pct))
+    } else {
+        None
+    };
+    let (run_cfg, model_grid) = match &looped {
+        Some((c, why)) => (c, Some(why.clone())),
+        None => (cfg, None),
+    };
+    let mut d = run(
+        run_cfg,
+        data,
+        o.threads,
+        o.fit_tolerance,
+        o.search_seconds,
         progress,
-    )
+    )?;
+    d.model_grid = model_grid;
+    if looped.is_some() {
+        // the proposal keeps the user's grid and scheme
+        if let Some(j) = d.search.as_mut().and_then(|s| s.proposed_config.as_mut()) {
+            j["grid"] = serde_json::json!(cfg.grid);
+            j["scheme"] = serde_json::json!(cfg.scheme.name());
+        }
+    }
+    Ok(d)
 }
 
 /// What every candidate of one diagnosis is judged against: the data, the folds, the
@@ -241,7 +340,7 @@ impl Baseline<'_> {
             self.labels,
             self.threads,
             self.opts,
-            &|i| progress(stages[i]),
+            &|i| progress(&format!("refitting with {}", stages[i])),
         );
         drop(items);
         pending
@@ -388,76 +487,6 @@ impl Baseline<'_> {
         }
         Ok((candidates, untried))
     }
-
-    /// Generic formula effects on the (at most two) extra columns with strong residual
-    /// structure, added and refitted.
-    fn formulas(&self) -> Result<Vec<Pending>> {
-        let (cfg, data) = (self.cfg, self.data);
-        let mut candidates = Vec::new();
-        if cfg.model == ModelKind::Polach {
-            return Ok(candidates);
-        }
-        let targets: &[Target] = if cfg.has(Effect::Coulomb) {
-            &[Target::Mu]
-        } else {
-            &[Target::TauC2, Target::TauC1]
-        };
-        for cr in self
-            .corr
-            .iter()
-            .filter(|c| data.extra_names.contains(&c.variable) && c.r.abs() >= STRONG)
-            .take(2)
-        {
-            let k = data
-                .extra_names
-                .iter()
-                .position(|n| *n == cr.variable)
-                .unwrap_or(0);
-            let x: Vec<f64> = data.rows.iter().map(|r| r.extra[k]).collect();
-            let (mean, sd) = mean_sd(&x);
-            let sd = sd.max(1e-12);
-            for &t in targets {
-                let name = format!("{}_by_{}", t.name(), cr.variable);
-                let factor = format!("exp(k * ({} - {mean}) / {sd})", cr.variable);
-                let k = FormulaParam {
-                    name: "k".into(),
-                    value: 0.0,
-                    min: -3.0,
-                    max: 3.0,
-                };
-                let fe = FormulaEffect::new(&name, t, &factor, vec![k])?;
-                let mut c = cfg.clone();
-                c.modifiers.push(creep_core::AnyModifier::Formula(fe));
-                let mut free = self.free.to_vec();
-                free.push(FreeParam::Modifier {
-                    effect: c.modifiers.len() - 1,
-                    param: 0,
-                });
-                let (folds_by, base_heldout) = (self.folds_by.to_string(), self.heldout);
-                let names: Vec<String> = free.iter().map(|p| p.name(&c)).collect();
-                let (variable, r) = (cr.variable.clone(), cr.r);
-                candidates.push(Pending {
-                    cfg: c,
-                    free,
-                    stage: format!("formula on {} ({})", cr.variable, t.name()),
-                    entry: Box::new(move |h, fitted| {
-                        let kfit = fitted.params.last().map(|p| p.value).unwrap_or(0.0);
-                        Candidate {
-                            effect: format!("formula: {} x exp(k ({variable} - {mean:.4}) / {sd:.4})", t.name()),
-                            heldout_cv_rmse_pct: h,
-                            fitted_cv_rmse_pct: fitted.cv_rmse_pct_after,
-                            free: names,
-                            explanation: format!(
-                                "No catalogue effect uses the column '{variable}', but the residuals follow it (r = {r:+.2}). A generic formula effect scaling {} by exp(k (x - mean)/sd) (fitted k = {kfit:+.3}) takes the held-out error (folds by {folds_by}) from {base_heldout:.2} % to {h:.2} %. Look for the physical mechanism behind this column, then write it as a formula effect or an effect in Rust.",
-                                t.name()
-                            ),
-                        }
-                    }),
-                });
-            }
-        }
-        Ok(candidates)
-    }
 }
 
 fn run(
@@ -468,7 +497,7 @@ fn run(
     search_seconds: f64,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Diagnosis> {
-    progress("baseline");
+    progress("fitting the configuration as given on the folds");
     // every fit below is judged by its fitted values alone (no standard errors), and repeated
     // model evaluations (start points, best points, rows shared by folds) are looked up
     let memo = Memo::new();
@@ -503,7 +532,6 @@ fn run(
     let (mut pending, catalogue_all_on) = base.catalogue()?;
     let (rust, untried) = base.rust_effects()?;
     pending.extend(rust);
-    pending.extend(base.formulas()?);
     let mut candidates = base.score_all(pending, progress)?;
     candidates.sort_by(|a, b| a.heldout_cv_rmse_pct.total_cmp(&b.heldout_cv_rmse_pct));
     let missing = candidates
@@ -541,13 +569,12 @@ fn run(
             cfg,
             data,
             &pred,
-            &corr,
             &labels,
             &base_free,
             threads,
             &opts,
             best_heldout,
-            noise.as_ref().map(|n| n.cv_rmse_pct),
+            base_heldout,
             search_seconds,
             progress,
         )?;
@@ -573,6 +600,7 @@ fn run(
         at_noise,
         search,
         warnings,
+        model_grid: None,
     })
 }
 
@@ -641,42 +669,88 @@ fn noise_words(
             n.cv_rmse_pct, n.sd_f, n.method
         ),
         (Some(n), Some(t)) => format!(
-            " The best model ({best_model}, held-out {best_heldout:.2} %) is still {t:.1} times the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): something is still missing. Besides data columns, a formula effect can use the operating point (v_mps, fn_kN, cx, cy, spin_per_m) and the local state (p_GPa, T_C, u_mm, slip_mps) to scale tau_c1, tau_c2, L_e, L_p or mu (docs/measurements.md).",
+            " The best model ({best_model}, held-out {best_heldout:.2} %) is still {t:.1} times the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): something is still missing. Besides data columns, a formula effect can use the operating point (v_mps, fn_kN, cx, cy, spin_per_m) and the local state (p_GPa, T_C, u_mm, slip_mps) to scale tau_c1, tau_c2, both strengths together, L_e, L_p or mu (docs/measurements.md).",
             n.cv_rmse_pct, n.sd_f, n.method
         ),
         _ => " The noise level of the data could not be estimated (no repeated operating points, no curve of five points or more): whether something is still missing cannot be said.".to_string(),
     }
 }
 
-/// The verdict's part on the search of formula forms: how far it got and what it proposes.
+/// The verdict's part on the search of formula forms: how far it got, what it proposes, how
+/// far above the noise that leaves the model and what to try next.
 fn search_words(
     s: &crate::search::Search,
     noise: Option<&crate::noise::Noise>,
     best_heldout: f64,
     search_seconds: f64,
 ) -> String {
-    let bound = if s.tried < s.total {
-        format!(", stopped by the time bound of {search_seconds:.0} s")
+    let c = &s.cost;
+    let bound = if c.shortlisted < crate::search::SHORTLIST.min(s.total) {
+        format!(
+            "; {} of the {} shortlisted fitted before the time bound of {search_seconds:.0} s",
+            c.shortlisted,
+            crate::search::SHORTLIST
+        )
     } else {
         String::new()
     };
     let head = format!(
-        " Search of formula forms: {} of {} tried in {:.0} s{bound}.",
-        s.tried, s.total, s.seconds
+        " Search of formula forms: {} of {} screened on the factor each row needs, the best {} refitted on the folds with their own parameters and the target's level, the best {} of those with every free parameter, in {:.0} s{bound}.",
+        s.tried, s.total, c.shortlisted, c.finalists, s.seconds
     );
+    let times = |h: f64| {
+        noise
+            .filter(|n| n.cv_rmse_pct > 0.0)
+            .map(|n| h / n.cv_rmse_pct)
+    };
     head + &match (&s.proposed, s.forms.first()) {
         (Some(f), _) => {
-            let times = noise
-                .map(|n| format!(" ({:.1} times the noise level)", f.heldout_cv_rmse_pct / n.cv_rmse_pct))
-                .unwrap_or_default();
+            let next = match times(f.heldout_cv_rmse_pct) {
+                Some(t) if t <= AT_NOISE => format!(
+                    " That is {t:.1} times the noise level: at the noise, nothing more is missing that these data can show."
+                ),
+                Some(t) => {
+                    let others: Vec<String> = s
+                        .forms
+                        .iter()
+                        .filter(|g| g.variable != f.variable)
+                        .take(2)
+                        .map(|g| format!("{} x {} in {}", g.target, g.shape, g.variable))
+                        .collect();
+                    format!(
+                        " That is still {t:.1} times the noise level: something more is missing. Next: run ecf diagnose again on the proposed configuration (--config with the file --out writes), which searches for a second form on top of this one{}; or look at the residuals over each variable (ecf compare --plots).",
+                        if others.is_empty() {
+                            String::new()
+                        } else {
+                            format!(" (the next variables in the ranking: {})", others.join(", "))
+                        }
+                    )
+                }
+                None => " The noise level could not be estimated: whether more is missing cannot be said.".into(),
+            };
             format!(
-                " Proposed: {} x {} in {} (factor {}), k = {:.4} ± {:.4}: held-out CV(RMSE) {:.2} % against {best_heldout:.2} %{times}. The configuration with it, fitted on all rows, is in proposed_config (ecf diagnose --out FILE writes it; ecf fit and the FMU take it as is).",
-                f.target, f.shape, f.variable, f.factor, f.k, f.k_stderr, f.heldout_cv_rmse_pct
+                " Proposed: {} x {} in {} (factor {}), {}: the held-out CV(RMSE) falls from {best_heldout:.2} % to {:.2} % ({:.0} % lower).{next} The configuration with it, fitted on all rows, is in proposed_config (ecf diagnose --out FILE writes it; ecf fit and the FMU take it as is).",
+                f.target,
+                f.shape,
+                f.variable,
+                f.factor,
+                f.params_text(),
+                f.heldout_cv_rmse_pct,
+                100.0 * (1.0 - f.heldout_cv_rmse_pct / best_heldout)
             )
         }
         (None, Some(f)) => format!(
-            " None beats the best model by more than the noise on the held-out folds (best form: {} x {} in {}, held-out {:.2} % against {best_heldout:.2} %): no form is proposed.",
-            f.target, f.shape, f.variable, f.heldout_cv_rmse_pct
+            " No form is proposed: the best ({} x {} in {}, held-out {:.2} % against {best_heldout:.2} %) does not lower the configuration's held-out error by {:.0} % with per-row evidence of {} standard errors. {}",
+            f.target,
+            f.shape,
+            f.variable,
+            f.heldout_cv_rmse_pct,
+            CLAIM_FRACTION * 100.0,
+            crate::search::EVIDENCE,
+            match times(best_heldout) {
+                Some(t) if t > AT_NOISE => "What is missing is then not a factor of one variable on one material function: try two variables together (a formula effect of your own), or an effect on another quantity.",
+                _ => "",
+            }
         ),
         (None, None) => " No form could be evaluated: no form is proposed.".to_string(),
     }

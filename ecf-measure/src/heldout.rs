@@ -191,7 +191,7 @@ fn fold(
 /// (the longest first, if the caller orders them so), and returns their results in job
 /// order. `job(j, inner)` runs job `j` with `inner` threads of its own (`threads` shared
 /// among the workers). A worker's panic is passed on.
-fn side_by_side<T: Send>(
+pub(crate) fn side_by_side<T: Send>(
     n: usize,
     threads: usize,
     job: &(dyn Fn(usize, usize) -> T + Sync),

@@ -94,7 +94,8 @@ impl FreeParam {
             FreeParam::Modifier { .. } => "-",
         }
     }
-    pub(super) fn set(&self, cfg: &mut Config, v: f64) -> Result<()> {
+    /// Sets the value (display unit; no bounds check).
+    pub(crate) fn set(&self, cfg: &mut Config, v: f64) -> Result<()> {
         match *self {
             FreeParam::Builtin(p) => cfg.params.set(p, v),
             FreeParam::Modifier { effect, param } => {

@@ -1,0 +1,75 @@
+//! The search of formula forms on files it was never tuned on (made by `hidden.rs` from seeds and truths the search never reads): it names the true variable and reaches the noise; on files with nothing missing it proposes nothing.
+//!
+//! A bounded sample of the sweep `bash scripts/loop-sweep.sh` (every case, 20 seeds of files
+//! with nothing missing per preset): two hidden effects, one that scales both strengths with
+//! speed and one in an extra column beside a distractor, and three files with nothing
+//! missing. The time bound is lifted so that the result does not depend on the machine's
+//! speed.
+use crate::hidden;
+use ecf_measure::diagnose::{diagnose_opts, Options};
+
+fn opts() -> Options {
+    Options {
+        search_seconds: 1e4,
+        ..Options::new(2)
+    }
+}
+
+fn check_case(name: &str, seed: u64) {
+    let c = hidden::cases()
+        .into_iter()
+        .find(|c| c.name == name)
+        .expect("case");
+    let truth = hidden::truth(c.preset, c.target, Some(c.factor));
+    let (data, clean) = hidden::file(&truth, c.column, c.distractor, seed);
+    let cfg = creep_core::Config::preset(c.preset).unwrap();
+    let d = diagnose_opts(&cfg, &data, &opts(), &|_| {}).unwrap();
+    eprintln!("{name}: {}", d.verdict);
+    assert!(d.model_grid.is_some(), "the loop grid runs the model");
+    let noise = hidden::true_noise_cv(&data, &clean);
+    let s = d
+        .search
+        .as_ref()
+        .expect("not at the noise: the search runs");
+    assert_eq!(s.tried, s.total);
+    let p = s.proposed.as_ref().expect("a form is proposed");
+    assert!(
+        c.variables.contains(&p.variable.as_str()),
+        "{name}: proposed {} x {} in {}",
+        p.target,
+        p.shape,
+        p.variable
+    );
+    assert!(
+        p.heldout_cv_rmse_pct <= 1.3 * noise,
+        "{name}: held-out {:.2} % against a noise of {noise:.2} %",
+        p.heldout_cv_rmse_pct
+    );
+    // the proposal is a configuration with the user's grid, read as any other
+    let text = s.proposed_config.as_ref().unwrap().to_string();
+    let prop = creep_core::Config::from_json_str(&text, "proposed.json").unwrap();
+    assert_eq!(prop.grid, cfg.grid);
+    assert!(d.verdict.contains(&format!("in {}", p.variable)));
+}
+
+#[test]
+fn both_strengths_falling_with_speed_are_found_at_the_noise() {
+    check_case("speed-reciprocal-strengths", 7);
+}
+
+#[test]
+fn a_saturating_effect_of_a_data_column_is_found_beside_a_distractor() {
+    check_case("column-saturating-strengths", 8);
+}
+
+#[test]
+fn nothing_missing_nothing_proposed_over_noise_seeds() {
+    for (preset, seed) in [("dry", 31), ("table4.1", 32), ("wet", 33)] {
+        let truth = hidden::truth(preset, "tau_c1", None);
+        let (data, _) = hidden::file(&truth, Some(("humidity", 20.0, 80.0)), true, seed);
+        let cfg = creep_core::Config::preset(preset).unwrap();
+        let d = diagnose_opts(&cfg, &data, &opts(), &|_| {}).unwrap();
+        let proposed = d.search.as_ref().and_then(|s| s.proposed.as_ref());
+        assert!(proposed.is_none(), "{preset} seed {seed}: {}", d.verdict);
+    }
+}
