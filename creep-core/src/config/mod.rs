@@ -228,14 +228,14 @@ struct RawFormula {
 
 /// The presets shipped with the crate: (name, JSON text).
 pub const PRESETS: &[(&str, &str)] = &[
-    ("fastsim", include_str!("../presets/fastsim.json")),
-    ("polach", include_str!("../presets/polach.json")),
-    ("table4.1", include_str!("../presets/table4.1.json")),
-    ("dry", include_str!("../presets/dry.json")),
-    ("wet", include_str!("../presets/wet.json")),
-    ("dry_sanded", include_str!("../presets/dry_sanded.json")),
-    ("wet_sanded", include_str!("../presets/wet_sanded.json")),
-    ("twin_disc", include_str!("../presets/twin_disc.json")),
+    ("fastsim", include_str!("../../presets/fastsim.json")),
+    ("polach", include_str!("../../presets/polach.json")),
+    ("table4.1", include_str!("../../presets/table4.1.json")),
+    ("dry", include_str!("../../presets/dry.json")),
+    ("wet", include_str!("../../presets/wet.json")),
+    ("dry_sanded", include_str!("../../presets/dry_sanded.json")),
+    ("wet_sanded", include_str!("../../presets/wet_sanded.json")),
+    ("twin_disc", include_str!("../../presets/twin_disc.json")),
 ];
 
 fn preset_text(name: &str) -> Result<&'static str> {
