@@ -16,6 +16,7 @@
 //! ```
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
+#![warn(clippy::too_many_lines)] // at most 150 lines a function (clippy.toml)
 
 pub mod bristle;
 pub mod bytes;

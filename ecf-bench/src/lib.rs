@@ -1,4 +1,7 @@
 //! The plain C FASTSIM reference of the benchmarks, and the contact data it needs from creep-core.
+
+#![warn(clippy::too_many_lines)] // at most 150 lines a function (clippy.toml)
+
 use creep_core::params::P;
 use creep_core::{engine, kalker, Config, Result};
 

@@ -1,5 +1,7 @@
 //! `ecf`: command-line front of creep-core and ecf-measure — creep curves, transient steps, periodic creepage and contact fields as CSV.
 
+#![warn(clippy::too_many_lines)] // at most 150 lines a function (clippy.toml)
+
 use clap::{Args, Parser, Subcommand};
 use creep_core::{Config, CreepError, Grid};
 use std::io::Write;

@@ -10,6 +10,7 @@
 //! The physics crate creep-core and the FMU do not depend on this crate.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
+#![warn(clippy::too_many_lines)] // at most 150 lines a function (clippy.toml)
 
 pub mod diagnose;
 pub mod evaluate;

@@ -7,6 +7,7 @@
 //! state format; [`ffi`] is the only module with `unsafe`: the exported C functions of the
 //! FMI 2.0 standard.
 #![deny(unsafe_code)]
+#![warn(clippy::too_many_lines)] // at most 150 lines a function (clippy.toml)
 
 #[allow(unsafe_code)]
 pub mod ffi;

@@ -2,9 +2,10 @@
 
 use super::kin::{trapezoid_stress, Kin};
 use super::Contact;
-use crate::bristle::{self, BristleState};
+use crate::bristle::{self, BristleState, Material};
 use crate::material::NodeP;
 use crate::thermal::{self, StepFactors, N_KERNEL};
+use std::cell::Cell;
 
 /// The end stress's extra weight in the newest interval of Eq. 4.35 under the higher-order
 /// rules: for a heat rate linear over the move the exact weights of its start and end rates
@@ -30,6 +31,236 @@ fn lerp(a: &BristleState, b: &BristleState, w: f64) -> Option<BristleState> {
         sh: a.sh + w * (b.sh - a.sh),
         ..*a
     })
+}
+
+/// A general move as its temperature solve sees it: the bristle before the move, what the
+/// law takes from the move whatever the trial temperature, and the reference of the damped
+/// release.
+struct TrialMove<'a> {
+    c: &'a Contact,
+    k: &'a Kin,
+    /// The pressure parts at the end of the move.
+    np: &'a NodeP,
+    /// The midpoint of the move in the contact frame, m.
+    xy: [f64; 2],
+    old: BristleState,
+    /// The move's rigid slip, m.
+    du: [f64; 2],
+    /// |u| of the bristle before the move (m) and its slip |du| / h, the material's local
+    /// state.
+    u_abs: f64,
+    slip: f64,
+    /// The temperature of the heat history, degC, and the material there where the setup
+    /// evaluated it (kept for the solve's first evaluation).
+    t_hist: f64,
+    m_hist: Option<Material>,
+    /// The flash temperature per heat density of the move's own interval, over the plastic
+    /// remainder of the move for a bristle that yields on the way.
+    self_c: f64,
+    /// The bristle may ride on tau_c1 in this move.
+    riding: bool,
+    /// The release weight theta of the move's own elastic-release heat.
+    theta: f64,
+    /// (L_x + L_e, L_y + L_e, dtau) where L_e does not depend on the trial temperature.
+    fixed: Option<(f64, f64, [f64; 2])>,
+    /// The law's material-independent parts of the move (the same-characteristic rule).
+    mv: Option<bristle::Move>,
+    /// The higher-order rules' start material is set: the heat weighs the end stress by
+    /// 1/2 + [`QLIN`].
+    ho: bool,
+    /// The stress the damped release is measured from; the first evaluation sets it.
+    release_ref: Cell<Option<[f64; 2]>>,
+}
+
+impl TrialMove<'_> {
+    /// The flexibilities L + L_e and the elastic increment (Eq. 4.21) for the layer's L_e.
+    #[inline]
+    fn flex(&self, le: f64) -> (f64, f64, [f64; 2]) {
+        self.k.flex(le, self.xy)
+    }
+
+    /// The end state of the move at trial temperature `t` (degC) and its heat density q
+    /// (W/m^2, 0 without heat flow).
+    #[inline]
+    fn trial(&self, t: f64) -> (BristleState, f64) {
+        let m = match self.m_hist {
+            Some(m) if t == self.t_hist => m,
+            _ => self.c.material(self.np, t, self.u_abs, self.slip),
+        };
+        let (lxe, lye, dtau) = match self.fixed {
+            Some(f) => f,
+            None => self.flex(m.le),
+        };
+        let mut ns = self.old;
+        match &self.mv {
+            Some(mv) => bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye]),
+            None => bristle::update(&mut ns, self.du, dtau, &m, [lxe, lye], self.c.r.rule),
+        }
+        let q = if self.k.heat {
+            self.heat(&mut ns, [lxe, lye])
+        } else {
+            0.0
+        };
+        (ns, q)
+    }
+
+    /// The heat density (W/m^2) of the move to end state `ns` with flexibilities
+    /// (L_x + L_e, L_y + L_e), m/Pa: the trapezoid stress over the plastic slip, with the elastic release
+    /// weighed by theta from the release reference (Eq. 4.29); under the higher-order rules
+    /// the end-weighted heat, with the mean kept in `ns.q`.
+    #[inline]
+    fn heat(&self, ns: &mut BristleState, [lxe, lye]: [f64; 2]) -> f64 {
+        let (old, du, k) = (&self.old, self.du, self.k);
+        let theta = self.theta;
+        let tr = match self.release_ref.get() {
+            Some(r) => [
+                r[0] + theta * (ns.tau[0] - r[0]),
+                r[1] + theta * (ns.tau[1] - r[1]),
+            ],
+            None => {
+                self.release_ref.set(Some(ns.tau));
+                ns.tau
+            }
+        };
+        let dux = du[0] - lxe * (tr[0] - old.tau[0]);
+        let duy = du[1] - lye * (tr[1] - old.tau[1]);
+        let tw = trapezoid_stress(ns.tau, old.tau);
+        let kq = self.c.r.kq;
+        let qbar = (kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0);
+        if self.ho {
+            // the heat rate linear over the move from the start stress's to the end
+            // stress's: the newest interval of Eq. 4.35 weighs its end by 2/3,
+            // 2 sqrt(h) (qbar + (q1 - q0)/6); ns.q keeps the mean qbar (the
+            // accumulators' piecewise-constant heat)
+            let q1 = kq * (ns.tau[0] * dux + ns.tau[1] * duy) / k.h;
+            let q0 = kq * (old.tau[0] * dux + old.tau[1] * duy) / k.h;
+            ns.q = qbar;
+            end_weighted_heat(qbar, q1, q0)
+        } else {
+            qbar
+        }
+    }
+
+    /// A bristle elastic at the start of the move makes no heat until it crosses tau_c1: it
+    /// crosses at the yield stress of its temperature while elastic, t_hist, and its heat
+    /// flows only over the plastic remainder (1 - lambda) h of the move, so that its
+    /// self-heating is 2 alpha C q sqrt(h) / sqrt(1 - lambda) for the move's mean heat
+    /// density q (docs/model.md, section 9). Sets the move's cold yield, `self_c` and the
+    /// material at t_hist of such a bristle under the same-characteristic rule with heat.
+    #[inline]
+    fn set_cold_crossing(&mut self) {
+        let (c, k, np, old) = (self.c, self.k, self.np, self.old);
+        if !(self.mv.is_some()
+            && c.r.temperature
+            && k.heat
+            && old.regime == bristle::Regime::Elastic)
+        {
+            return;
+        }
+        let (t_hist, u_abs, slip) = (self.t_hist, self.u_abs, self.slip);
+        let m = c.material(np, t_hist, u_abs, slip);
+        let dtau = match self.fixed {
+            Some(f) => f.2,
+            None => self.flex(m.le).2,
+        };
+        let tc1_of = |p: &NodeP| c.material(p, t_hist, u_abs, slip).tc1;
+        let tc1 = c.crossing_yield(k, np, self.xy, [old.tau, dtau], m.tc1, tc1_of);
+        if let Some(mv) = self.mv.as_mut() {
+            let lam = mv.set_cold_yield(&old, dtau, tc1);
+            if lam > 0.0 && lam < 1.0 {
+                self.self_c /= (1.0 - lam).sqrt();
+            }
+        }
+        self.m_hist = Some(m);
+    }
+
+    /// The higher-order rules (docs/model.md section 9, step 8): the start material is the
+    /// start node `np0`'s at the bristle's temperature at the start of the move, the same for
+    /// every trial temperature; the temperature profile's sqrt(s) part is the self-heating of
+    /// the jump of the heat rate at the start of the move, from the old stress over the rigid
+    /// slip against the previous move's mean heat. Sets the move's [`bristle::Along`].
+    #[inline]
+    fn set_start_material(&mut self, np0: &NodeP) {
+        let Some(mv) = &self.mv else {
+            return;
+        };
+        let c = self.c;
+        let m0 = c.material(np0, self.old.temp, self.u_abs, self.slip);
+        let lp_sqrt = if c.r.temperature && self.k.heat {
+            c.lp_sqrt(self.k, self.self_c, &self.old, self.du)
+        } else {
+            f64::NAN
+        };
+        mv.set_along(bristle::Along {
+            tc2_start: m0.tc2,
+            lp_start: m0.lp,
+            lp_sqrt,
+        });
+        self.ho = true;
+    }
+
+    /// The reference of the damped release (theta < 1) of a bristle that heated in its
+    /// previous move: its stress at the predictor t_hist + self_c q_prev, the estimate of its
+    /// end temperature for a heat that goes on. At t_hist instead, colder by the previous
+    /// move's own heat (O(sqrt h)), the damped release took the stress change of that
+    /// cooling, which outweighs the move's heat (O(h)): on fine grids a bristle riding on
+    /// tau_c1 jumped off it and the sliding zone lost heat (docs/model.md, section 9, step
+    /// 10). Under the higher-order rules (`higher_order`) the temperature of the previous
+    /// move is the end-weighted heat's and its history the mean heat's, so on short moves the
+    /// predictor misses the bristle's temperature by their difference: there only a riding
+    /// bristle takes it. (Measured for the default rule, the same characteristic; elastic
+    /// unloading keeps t_hist.) Elsewhere the first evaluation of the solve sets it. `eval`:
+    /// [`TrialMove::trial`], the closure the solve takes too.
+    #[inline]
+    fn seed_release_reference(
+        &self,
+        higher_order: bool,
+        eval: impl Fn(f64) -> (BristleState, f64),
+    ) {
+        let old = &self.old;
+        if self.theta < 1.0
+            && self.self_c > 0.0
+            && old.q > 0.0
+            && self.c.r.rule == bristle::Rule::SameCharacteristic
+            && (self.riding || !higher_order)
+        {
+            let (at_predictor, _) = eval(self.t_hist + self.self_c * old.q);
+            if !(at_predictor.tau[0].is_finite() && at_predictor.tau[1].is_finite()) {
+                // no finite stress at the predictor (a runaway heat history, e.g. a layer
+                // whose compliance grows with T without bound): the reference stays at t_hist
+                self.release_ref.set(None);
+            }
+        }
+    }
+
+    /// The end state and heat density of the move at the root of T = t_hist + self_c q(T)
+    /// (Eq. 4.35). A sliding bristle that heated in its previous move starts the solve at the
+    /// predictor; this is valid where the root is unique (a bristle sliding at tau_c2(T),
+    /// whose heat falls with T) and the release is not damped; otherwise (or when a trial
+    /// state is not sliding) the full solve from t_hist. Plastic bristles are left to the
+    /// full solve: an elastic state at t_hist can be the smallest root there. `eval`:
+    /// [`TrialMove::trial`].
+    #[inline]
+    fn solve(&self, eval: impl Fn(f64) -> (BristleState, f64) + Copy) -> (BristleState, f64) {
+        let (t_hist, self_c, old) = (self.t_hist, self.self_c, &self.old);
+        let temperature = self.c.r.temperature;
+        let t_tol = self.c.t_tol;
+        let sliding = |s: &BristleState| s.regime == bristle::Regime::Sliding;
+        let predicted =
+            if temperature && self_c > 0.0 && old.q > 0.0 && self.theta == 1.0 && sliding(old) {
+                thermal::solve_from_predictor(t_hist, self_c, old.q, t_tol, eval, lerp, sliding)
+            } else {
+                None
+            };
+        let (mut ns, mut q) = match predicted {
+            Some(r) => r,
+            None => eval(t_hist),
+        };
+        if predicted.is_none() && temperature && q > 0.0 && self_c > 0.0 {
+            (ns, q) = thermal::solve_self_heating(t_hist, self_c, q, ns, old.q, t_tol, eval, lerp);
+        }
+        (ns, q)
+    }
 }
 
 impl Contact {
@@ -58,8 +289,45 @@ impl Contact {
                 return q;
             }
         }
-        let self_c = k.self_c;
-        let old = *s;
+        let mut tm = self.trial_move(k, np, [x, y], du, t_hist, *s);
+        tm.set_cold_crossing();
+        if let Some(np0) = np0 {
+            tm.set_start_material(np0);
+        }
+        let eval = |t: f64| tm.trial(t);
+        tm.seed_release_reference(np0.is_some(), eval);
+        let (mut ns, q) = tm.solve(eval);
+        ns.temp = if self.r.temperature {
+            t_hist + tm.self_c * q
+        } else {
+            k.t_bulk
+        };
+        // the higher-order rules: the temperature from the end-weighted heat, the
+        // accumulators (and the friction power) from the move's mean heat
+        let q = if tm.ho && k.heat && q > 0.0 { ns.q } else { q };
+        ns.q = q;
+        *s = ns;
+        if self.r.temperature && k.heat && (warm || q > 0.0) {
+            fac.accumulate(acc, q); // alpha is folded into alpha_c
+        }
+        q
+    }
+
+    /// The general move of bristle `old` by the rigid slip `du` (m) at midpoint `xy` to the
+    /// end node `np`, for its temperature solve from the heat history's `t_hist`: the release
+    /// weight, the flexibilities where they do not depend on T and the law's
+    /// material-independent parts.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn trial_move<'a>(
+        &'a self,
+        k: &'a Kin,
+        np: &'a NodeP,
+        xy: [f64; 2],
+        du: [f64; 2],
+        t_hist: f64,
+        old: BristleState,
+    ) -> TrialMove<'a> {
         // displacements and stresses are far from overflow: sqrt instead of hypot
         let u_abs = (old.u[0] * old.u[0] + old.u[1] * old.u[1]).sqrt();
         let slip = if k.h > 0.0 {
@@ -67,7 +335,6 @@ impl Contact {
         } else {
             0.0
         };
-        let release_ref: std::cell::Cell<Option<[f64; 2]>> = std::cell::Cell::new(None);
         // A plastic bristle below the yield stress tau_c1 of its heat history's temperature
         // may ride on tau_c1 in this move (the floor of the law, `bristle::update`), where its
         // heat follows tau_c1(T): the release weight then bounds tau_c1's temperature
@@ -80,171 +347,32 @@ impl Contact {
             .then(|| self.material(np, t_hist, u_abs, slip));
         let riding = m_plastic.is_some_and(|m| bristle::norm(old.tau) < m.tc1);
         let theta = self.release_weight(k, np, old.tau, riding);
-        // flexibilities L + L_e and the elastic increment (Eq. 4.21) for the layer's L_e
-        let flex = |le: f64| k.flex(le, [x, y]);
         // Without a temperature coefficient of L_e (every preset) and without formula
         // effects, material_base gives L_e = the node's (divided by exactly 1): the same for
         // every trial temperature, so this is computed once per move, not per evaluation.
-        let fixed = self.fast.fixed_le.then(|| flex(np.le));
+        let fixed = self.fast.fixed_le.then(|| k.flex(np.le, xy));
         // the law's material-independent parts of this move, shared by all evaluations
-        let mut mv = (self.r.rule == bristle::Rule::SameCharacteristic)
+        let mv = (self.r.rule == bristle::Rule::SameCharacteristic)
             .then(|| bristle::Move::new(&old, du));
-        // A bristle elastic at the start of the move makes no heat until it crosses tau_c1:
-        // it crosses at the yield stress of its temperature while elastic, t_hist, and its
-        // heat flows only over the plastic remainder (1 - lambda) h of the move, so that its
-        // self-heating is 2 alpha C q sqrt(h) / sqrt(1 - lambda) for the move's mean heat
-        // density q (docs/model.md, section 9).
-        let mut m_hist = m_plastic;
-        let mut self_c = self_c;
-        if let Some(mv) = mv.as_mut() {
-            if self.r.temperature && k.heat && old.regime == bristle::Regime::Elastic {
-                let m = self.material(np, t_hist, u_abs, slip);
-                let dtau = match fixed {
-                    Some(f) => f.2,
-                    None => flex(m.le).2,
-                };
-                let tc1_of = |p: &NodeP| self.material(p, t_hist, u_abs, slip).tc1;
-                let tc1 = self.crossing_yield(k, np, [x, y], [old.tau, dtau], m.tc1, tc1_of);
-                let lam = mv.set_cold_yield(&old, dtau, tc1);
-                if lam > 0.0 && lam < 1.0 {
-                    self_c /= (1.0 - lam).sqrt();
-                }
-                m_hist = Some(m);
-            }
+        TrialMove {
+            c: self,
+            k,
+            np,
+            xy,
+            old,
+            du,
+            u_abs,
+            slip,
+            t_hist,
+            m_hist: m_plastic,
+            self_c: k.self_c,
+            riding,
+            theta,
+            fixed,
+            mv,
+            ho: false,
+            release_ref: Cell::new(None),
         }
-        let mv = mv;
-        // The higher-order rules (docs/model.md section 9, step 8): the start material is the
-        // start node's at the bristle's temperature at the start of the move, the same for
-        // every trial temperature; the temperature profile's sqrt(s) part is the
-        // self-heating of the jump of the heat rate at the start of the move, from the old
-        // stress over the rigid slip against the previous move's mean heat.
-        let m0 = match (np0, &mv) {
-            (Some(np0), Some(mv)) => {
-                let m0 = self.material(np0, old.temp, u_abs, slip);
-                let lp_sqrt = if self.r.temperature && k.heat {
-                    self.lp_sqrt(k, self_c, &old, du)
-                } else {
-                    f64::NAN
-                };
-                mv.set_along(bristle::Along {
-                    tc2_start: m0.tc2,
-                    lp_start: m0.lp,
-                    lp_sqrt,
-                });
-                Some(m0)
-            }
-            _ => None,
-        };
-        let eval = |t: f64| -> (BristleState, f64) {
-            let m = match m_hist {
-                Some(m) if t == t_hist => m,
-                _ => self.material(np, t, u_abs, slip),
-            };
-            let (lxe, lye, dtau) = match fixed {
-                Some(f) => f,
-                None => flex(m.le),
-            };
-            let mut ns = old;
-            match &mv {
-                Some(mv) => bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye]),
-                None => bristle::update(&mut ns, du, dtau, &m, [lxe, lye], self.r.rule),
-            }
-            let q = if k.heat {
-                let tr = match release_ref.get() {
-                    Some(r) => [
-                        r[0] + theta * (ns.tau[0] - r[0]),
-                        r[1] + theta * (ns.tau[1] - r[1]),
-                    ],
-                    None => {
-                        release_ref.set(Some(ns.tau));
-                        ns.tau
-                    }
-                };
-                let dux = du[0] - lxe * (tr[0] - old.tau[0]);
-                let duy = du[1] - lye * (tr[1] - old.tau[1]);
-                let tw = trapezoid_stress(ns.tau, old.tau);
-                let qbar = (self.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0);
-                if m0.is_some() {
-                    // the heat rate linear over the move from the start stress's to the end
-                    // stress's: the newest interval of Eq. 4.35 weighs its end by 2/3,
-                    // 2 sqrt(h) (qbar + (q1 - q0)/6); ns.q keeps the mean qbar (the
-                    // accumulators' piecewise-constant heat)
-                    let q1 = self.r.kq * (ns.tau[0] * dux + ns.tau[1] * duy) / k.h;
-                    let q0 = self.r.kq * (old.tau[0] * dux + old.tau[1] * duy) / k.h;
-                    ns.q = qbar;
-                    end_weighted_heat(qbar, q1, q0)
-                } else {
-                    qbar
-                }
-            } else {
-                0.0
-            };
-            (ns, q)
-        };
-        // The reference of the damped release (theta < 1) of a bristle that heated in its
-        // previous move: its stress at the predictor t_hist + self_c q_prev, the estimate of
-        // its end temperature for a heat that goes on (the first evaluation sets it). At
-        // t_hist instead, colder by the previous move's own heat (O(sqrt h)), the damped
-        // release took the stress change of that cooling, which outweighs the move's heat
-        // (O(h)): on fine grids a bristle riding on tau_c1 jumped off it and the sliding
-        // zone lost heat (docs/model.md, section 9, step 10). Under the higher-order rules the
-        // temperature of the previous move is the end-weighted heat's and its history the
-        // mean heat's, so on short moves the predictor misses the bristle's temperature by
-        // their difference: there only a riding bristle takes it. (Measured for the default
-        // rule, the same characteristic; elastic unloading keeps t_hist.)
-        if theta < 1.0
-            && self_c > 0.0
-            && old.q > 0.0
-            && self.r.rule == bristle::Rule::SameCharacteristic
-            && (riding || np0.is_none())
-        {
-            let (at_predictor, _) = eval(t_hist + self_c * old.q);
-            if !(at_predictor.tau[0].is_finite() && at_predictor.tau[1].is_finite()) {
-                // no finite stress at the predictor (a runaway heat history, e.g. a layer
-                // whose compliance grows with T without bound): the reference stays at t_hist
-                release_ref.set(None);
-            }
-        }
-        // A sliding bristle that heated in its previous move starts the solve at the
-        // predictor; this is valid where the root is unique (a bristle sliding at tau_c2(T),
-        // whose heat falls with T) and the release is not damped; otherwise (or when a trial
-        // state is not sliding) the full solve from t_hist. Plastic bristles are left to the
-        // full solve: an elastic state at t_hist can be the smallest root there.
-        let sliding = |s: &BristleState| s.regime == bristle::Regime::Sliding;
-        let predicted =
-            if self.r.temperature && self_c > 0.0 && old.q > 0.0 && theta == 1.0 && sliding(&old) {
-                thermal::solve_from_predictor(
-                    t_hist, self_c, old.q, self.t_tol, eval, lerp, sliding,
-                )
-            } else {
-                None
-            };
-        let (mut ns, mut q) = match predicted {
-            Some(r) => r,
-            None => eval(t_hist),
-        };
-        if predicted.is_none() && self.r.temperature && q > 0.0 && self_c > 0.0 {
-            (ns, q) =
-                thermal::solve_self_heating(t_hist, self_c, q, ns, old.q, self.t_tol, eval, lerp);
-        }
-        ns.temp = if self.r.temperature {
-            t_hist + self_c * q
-        } else {
-            k.t_bulk
-        };
-        // the higher-order rules: the temperature from the end-weighted heat, the
-        // accumulators (and the friction power) from the move's mean heat
-        let q = if m0.is_some() && k.heat && q > 0.0 {
-            ns.q
-        } else {
-            q
-        };
-        ns.q = q;
-        *s = ns;
-        if self.r.temperature && k.heat && (warm || q > 0.0) {
-            fac.accumulate(acc, q); // alpha is folded into alpha_c
-        }
-        q
     }
 
     /// [`bristle::Along::lp_sqrt`] of the move of bristle `old` by the rigid slip `du` (m)

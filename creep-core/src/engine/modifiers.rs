@@ -173,7 +173,7 @@ impl Contact {
 
     /// Scales a material by the modifiers' factors (local ones evaluated at this bristle:
     /// pressure `p` Pa, temperature `t` degC, |u| = `u` m, rigid slip speed `slip` m/s).
-    #[inline]
+    #[inline(always)]
     pub(super) fn apply_modifiers(
         &self,
         mut m: Material,
