@@ -1,8 +1,10 @@
 //! `ecf-bench`: cost of the ECF engine against a plain C FASTSIM, transient real-time factors and `ecf diagnose`, measured interleaved in one process (medians).
 //!
 //! Usage: ecf-bench [--quick] [--only steady|transient|diagnose|threads|accuracy|consistency|steady-grid] [--finest 320|640]
+//!        ecf-bench count CASE [NXxNY] [REPS]   (a probe for callgrind, module `count`)
 mod accuracy;
 mod consistency;
+mod count;
 mod steady_grid;
 
 use creep_core::engine::Scheme;
@@ -374,6 +376,13 @@ fn diagnose(quick: bool) {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("count") {
+        if let Err(e) = count::run(&args[1..]) {
+            eprintln!("ecf-bench count: {e}");
+            std::process::exit(2);
+        }
+        return;
+    }
     let quick = args.iter().any(|a| a == "--quick");
     let only = args
         .iter()
