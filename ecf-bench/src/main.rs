@@ -186,6 +186,8 @@ const GUARD_DRY: f64 = 16.0;
 /// development machine, pinned to one core, other builds running), median 5.25.
 const HO_LEVEL: f64 = 5.25;
 const GUARD_HO: f64 = 1.3 * HO_LEVEL;
+/// Measurements of the guard's ratios at most (the lowest of each counts).
+const GUARD_ATTEMPTS: usize = 3;
 
 /// One transient cells-ho step (table4.1, 20x3, 20 m/s, 0.1 ms, creepage 2 % +- 1 % at
 /// 50 Hz) over one call of the C FASTSIM (40x21, c_x 2 %), interleaved: median of the
@@ -498,9 +500,24 @@ fn main() {
             && (!["accuracy", "consistency", "steady-grid"].contains(&w) || quick || only.is_some())
     };
     if run("steady") {
-        let (fastsim, dry) = steady_table(quick);
-        let ho = transient_guard(quick);
-        if !guard_holds(fastsim, dry, ho) {
+        let (mut fastsim, mut dry) = steady_table(quick);
+        let mut ho = transient_guard(quick);
+        // a ratio over its limit is measured again, twice at most, and the lowest of the
+        // measurements counts: a slower build stays over, a burst of load on the machine
+        // seldom lasts through three
+        let mut holds = guard_holds(fastsim, dry, ho);
+        for attempt in 2..=GUARD_ATTEMPTS {
+            if holds {
+                break;
+            }
+            println!("== guard: over a limit; measuring again (attempt {attempt} of {GUARD_ATTEMPTS}, the lowest counts)");
+            let (f, d) = steady_table(quick);
+            fastsim = fastsim.min(f);
+            dry = dry.min(d);
+            ho = ho.min(transient_guard(quick));
+            holds = guard_holds(fastsim, dry, ho);
+        }
+        if !holds {
             eprintln!("ecf-bench: a cost ratio is over the guard's limit (see the guard table)");
             std::process::exit(1);
         }
