@@ -5,6 +5,12 @@
 # `ecf diagnose` on the worked example. Pinned to one core where taskset exists.
 #   bash scripts/bench.sh            full run (about 2-3 minutes)
 #   bash scripts/bench.sh --quick    short run (CI smoke test, < 30 s)
+# Every run with the steady table (the default, --quick, --only steady) ends it with a guard
+# on in-run ratios to the C FASTSIM (40x21): steady FASTSIM/C <= 1.2, steady ECF dry/C <= 16,
+# a transient cells-ho step (table4.1 20x3, 20 m/s, 0.1 ms) / C <= 1.3 x its measured level
+# (docs/model.md section 10); it prints them with their limits, measures again (at most three
+# times, the lowest counts) while one is over, and exits non-zero when one stays over.
+# Instruction counts of the same cases: scripts/callgrind.sh.
 #   bash scripts/bench.sh --only steady|transient|diagnose
 #   bash scripts/bench.sh --only threads   transient on all cores vs one (not pinned)
 #   bash scripts/bench.sh --only accuracy [--finest 640]   errors of each grid and scheme against

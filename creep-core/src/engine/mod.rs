@@ -222,6 +222,14 @@ pub struct Contact {
     /// bit: then, while the inputs are symmetric too, one of each pair is computed and copied
     /// ([`Contact::each_strip`]).
     strips_mirrored: bool,
+    /// `strips_mirrored` is still to be found from the state FASTSIM's steady march left
+    /// ([`Contact::settle_mirrored`]): a run of steady states alone never needs it, so the
+    /// comparison of every strip with its mirror image waits for the next step.
+    mirrored_unknown: bool,
+    /// Every node accumulator in `node_acc` is 0 (bit for bit): FASTSIM's steady march then
+    /// need not clear them again. Whatever may write them (a step, a restored state, a reset
+    /// of the nodes) sets this false.
+    node_acc_zero: bool,
     /// Symmetric strips are computed once ([`Contact::set_mirror_strips`]; off for tests and
     /// benchmarks that compare both).
     mirror_strips: bool,
@@ -293,6 +301,8 @@ impl Contact {
             softening_fast: false,
             fast: fastpath::Taken::default(),
             strips_mirrored: true,
+            mirrored_unknown: false,
+            node_acc_zero: true,
             mirror_strips: true,
             t_tol: {
                 let r = Resolved::from_config(cfg);
@@ -458,6 +468,8 @@ impl Contact {
     pub fn step(&mut self, dt: f64, inputs: &Inputs) -> Result<Outputs> {
         check_range("dt", dt, 0.0, 1e3, "s")?;
         inputs.validate()?;
+        // on the state as the last steady state left it (before a reversal mirrors it)
+        self.settle_mirrored();
         let rev = self.wants_reversed(inputs);
         if rev != self.reversed {
             if self.initialized {
@@ -512,7 +524,7 @@ impl Contact {
         self.reset_nodes();
         // the bristles are reset, the strips' ring heads and phases are not: equal only
         // where they were (a state of an older strip rule may hold phases a bit apart)
-        self.strips_mirrored = self.strips_equal();
+        self.set_mirrored(self.strips_equal());
         self.out = Outputs::unloaded(self.inputs.t_bulk);
         self.out
     }
@@ -538,7 +550,8 @@ impl Contact {
         // the whole strip at phase 0
         self.out = if self.coulomb_path() {
             let out = self.steady_coulomb();
-            self.strips_mirrored = self.strips_equal();
+            // whether the strips are mirror images: found when a step needs it
+            self.mirrored_unknown = true;
             out
         } else {
             self.steady_march()
@@ -551,7 +564,7 @@ impl Contact {
     fn steady_march(&mut self) -> Outputs {
         // every strip is marched afresh: mirror images from the start where the inputs are
         // symmetric
-        self.strips_mirrored = true;
+        self.set_mirrored(true);
         self.each_strip(|c, sp| {
             *sp.head = 0;
             *sp.phase = 0.0;
@@ -567,6 +580,7 @@ impl Contact {
     fn reset_nodes(&mut self) {
         self.node_st.copy_from_slice(&self.st);
         self.node_acc.copy_from_slice(&self.acc);
+        self.node_acc_zero = false;
         self.part.iter_mut().for_each(|p| *p = Partial::default());
     }
 

@@ -160,7 +160,8 @@ impl Contact {
         }
         self.initialized = initialized;
         self.out = out;
-        self.strips_mirrored = self.strips_equal();
+        self.node_acc_zero = false;
+        self.set_mirrored(self.strips_equal());
         Ok(())
     }
 }

@@ -139,8 +139,10 @@ impl Contact {
         };
         let mut scratch = vec![init; (LANES - 1) * (nx + 1)];
         let mut st = std::mem::take(&mut self.st);
-        for (g, (strips, bnd)) in st
+        let mut node_st = std::mem::take(&mut self.node_st);
+        for (g, ((strips, nodes), bnd)) in st
             .chunks_mut(LANES * (nx + 1))
+            .zip(node_st.chunks_mut(LANES * (nx + 1)))
             .zip(bounds.chunks_exact(nx + 1))
             .enumerate()
         {
@@ -158,13 +160,25 @@ impl Contact {
             }
             let sums = march_group::<LAT>(&m, &grp, bnd, &mut out);
             tot.add(&grp, &sums, m.a);
+            // as the general march: every bristle at its node, its node state its state
+            // (copied strip by strip while the group's states are in the cache)
+            for (n, o) in nodes
+                .chunks_exact_mut(nx + 1)
+                .zip(real.chunks_exact(nx + 1))
+            {
+                n.copy_from_slice(o);
+            }
         }
         self.st = st;
-        // as the general march: every bristle at its node (its node state its state, no heat
-        // history) and no part of a cell travelled; a step after a steady state in mid-run
-        // must not start from the parts and node states of the run before it
-        self.node_st.copy_from_slice(&self.st);
-        self.node_acc.fill([0.0; crate::thermal::N_KERNEL]);
+        self.node_st = node_st;
+        // ... with no heat history and no part of a cell travelled: a step after a steady
+        // state in mid-run must not start from the parts and node states of the run before
+        // it (the node accumulators are cleared only where a step, a reset of the nodes or a
+        // restored state may have written them since they were last cleared)
+        if !self.node_acc_zero {
+            self.node_acc.fill([0.0; crate::thermal::N_KERNEL]);
+            self.node_acc_zero = true;
+        }
         self.part.fill(super::Partial::default());
         self.bound_cache = bounds;
         self.coulomb_outputs(&tot)

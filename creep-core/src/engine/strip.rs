@@ -56,6 +56,9 @@ impl Contact {
     /// and each is copied onto strip ny - 1 - j, with bit-identical results (test
     /// `mirrored_strips_are_bit_identical`).
     pub(super) fn each_strip(&mut self, f: impl Fn(&Contact, &mut Strip) + Sync) {
+        self.settle_mirrored();
+        // `f` may write the node accumulators
+        self.node_acc_zero = false;
         let sym =
             self.strips_mirrored && self.ny > 1 && !self.patch.line && self.inputs.spin == 0.0;
         self.strips_mirrored = sym;
@@ -152,6 +155,20 @@ impl Contact {
         }
     }
 
+    /// Sets whether the strips are mirror images of each other (known now).
+    pub(super) fn set_mirrored(&mut self, mirrored: bool) {
+        self.strips_mirrored = mirrored;
+        self.mirrored_unknown = false;
+    }
+
+    /// Finds whether the strips are mirror images where FASTSIM's steady march left that
+    /// open ([`Self::strips_equal`] on its state, unchanged since).
+    pub(super) fn settle_mirrored(&mut self) {
+        if self.mirrored_unknown {
+            self.set_mirrored(self.strips_equal());
+        }
+    }
+
     /// True if every strip's state equals its mirror image's about y = 0, bit for bit (see
     /// [`Self::each_strip`]; 0 and -0 differ, so a state that holds both is computed strip by
     /// strip).
@@ -191,7 +208,11 @@ impl Contact {
     /// spin computes one of each pair (for tests).
     #[doc(hidden)]
     pub fn strips_mirrored(&self) -> bool {
-        self.strips_mirrored
+        if self.mirrored_unknown {
+            self.strips_equal()
+        } else {
+            self.strips_mirrored
+        }
     }
 
     /// Advances the strips on `threads` threads (1: the calling thread alone, the default).
