@@ -112,6 +112,9 @@ pub(super) fn shortlist(screened: &[Screened]) -> Vec<usize> {
             break;
         }
         let p = sc.plan;
+        if out.iter().any(|&k| screened[k].plan.same_form(&p)) {
+            continue;
+        }
         let same_pair = out
             .iter()
             .filter(|&&k| screened[k].plan.var == p.var && screened[k].plan.group == p.group)
@@ -258,15 +261,9 @@ impl Searcher<'_> {
             );
             let jobs = side_by_side(folds.len(), self.threads, &|k, inner| {
                 let fit = &sc.fits[k];
-                let (c, _) = with_form(
-                    &folds[k].cfg,
-                    self.base_free,
-                    t,
-                    p.shape,
-                    v,
-                    &fit.p,
-                    fit.beta[0],
-                )?;
+                // the screening's starting point: the fold's fit or the configuration as given
+                let anchor = if p.given { self.cfg } else { &folds[k].cfg };
+                let (c, _) = with_form(anchor, self.base_free, t, p.shape, v, &fit.p, fit.beta[0])?;
                 let free = form_free(&c, self.base_free, t, false);
                 self.fold_fit(&folds[k], &c, &free, inner, &opts)
             });

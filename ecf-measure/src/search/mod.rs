@@ -9,16 +9,20 @@
 //! and every extra column; a variable constant over the data is passed over.
 //!
 //! Four stages, each on the diagnosis' folds (no fold's rows shape its own prediction):
-//! 1. **The factor each row needs** ([`inverse`]): for every fold, the configuration with its
-//!    free parameters fitted on the other folds; for every target group, the log-factor that
-//!    brings the model onto each row and the traction coefficient's slope in it.
+//! 1. **The factor each row needs** ([`inverse`]): for every target group, the log-factor
+//!    that brings the model onto each row and the traction coefficient's slope in it, from
+//!    two starting points: every fold's configuration with its free parameters fitted on the
+//!    other folds, and the configuration as given (which shows an effect undisguised where
+//!    the fits bend a free parameter to stand in for it).
 //! 2. **Screening by regression** ([`shapes::fit`]): every form (group x variable x shape) is
 //!    fitted to the other folds' log-factors, weighted by the slopes, with a free level, and
-//!    scores the fold's rows through the slopes. No model runs: every form is screened.
+//!    scores the fold's rows through the slopes, from each starting point. No model runs:
+//!    every form is screened.
 //! 3. **The shortlist**: the best [`SHORTLIST`] screened forms (at most two shapes of one
 //!    target and variable, three forms of one variable) fitted with the full model on each
 //!    fold's training rows, the form's parameters and the target's level free (the other
-//!    free parameters stay at the fold's fit), started where the screening ended.
+//!    free parameters stay at the starting point's values), started where the screening
+//!    ended.
 //! 4. **The finalists**: the shortlist's best [`FINALISTS`] (and its best form with fewer
 //!    parameters) fitted on the folds and on all rows with every free parameter of the
 //!    diagnosis plus their own, as a catalogue effect is scored, and ranked by that held-out
@@ -254,6 +258,17 @@ struct Planned {
     group: usize,
     var: usize,
     shape: Shape,
+    /// Screened on the factors the configuration as given needs, not each fold's fit: where
+    /// the fold fits bend their free parameters (temperature coefficients, say) to stand in
+    /// for the missing effect, the configuration as given shows it undisguised.
+    given: bool,
+}
+
+impl Planned {
+    /// The same form (target, variable and shape), whichever factors screened it.
+    fn same_form(&self, o: &Planned) -> bool {
+        (self.group, self.var, self.shape) == (o.group, o.var, o.shape)
+    }
 }
 
 /// A fold: its training and test rows and the configuration fitted on the training rows.
@@ -324,7 +339,7 @@ pub(crate) fn search(
     let inv = s.inverses(&folds, &groups, &mut cost)?;
     let t = s.elapsed();
     let plan = plan(&vars, groups.len());
-    let total = plan.len();
+    let total = plan.len() / 2;
     s.tick(&format!("search: screening {total} forms"), 0, 1);
     let mut screened = s.screen(&plan, &vars, &folds, &inv);
     screened.sort_by(|a, b| a.cv.total_cmp(&b.cv));
@@ -400,7 +415,8 @@ pub(crate) fn search(
     })
 }
 
-/// Every form: each target group, variable and shape that applies.
+/// Every form: each target group, variable and shape that applies, screened on the folds'
+/// factors and on the configuration's as given.
 fn plan(vars: &[Var], groups: usize) -> Vec<Planned> {
     (0..groups)
         .flat_map(|g| {
@@ -408,10 +424,13 @@ fn plan(vars: &[Var], groups: usize) -> Vec<Planned> {
                 Shape::ALL
                     .into_iter()
                     .filter(move |sh| sh.applies(v))
-                    .map(move |shape| Planned {
-                        group: g,
-                        var: vi,
-                        shape,
+                    .flat_map(move |shape| {
+                        [false, true].map(|given| Planned {
+                            group: g,
+                            var: vi,
+                            shape,
+                            given,
+                        })
                     })
             })
         })
@@ -519,7 +538,8 @@ impl Searcher<'_> {
             .collect()
     }
 
-    /// Every fold's needed factors per target group, `[group][fold]`.
+    /// The needed factors per target group: each fold's fit's, then the configuration's as
+    /// given, `[group][fold or folds.len()]`.
     fn inverses(
         &self,
         folds: &[Fold],
@@ -527,21 +547,23 @@ impl Searcher<'_> {
         cost: &mut SearchCost,
     ) -> Result<Vec<Vec<Inverse>>> {
         let t = self.elapsed();
-        let nf = folds.len();
-        let jobs = groups.len() * nf;
+        // per group: each fold's fit, then the configuration as given
+        let per = folds.len() + 1;
+        let jobs = groups.len() * per;
         let count = std::sync::atomic::AtomicUsize::new(0);
         let stage = "search: the factor each row needs, per fold and target";
         self.tick(stage, 0, jobs);
         let rows = self.data.rows.len();
         let done = side_by_side(jobs, self.threads, &|j, inner| {
             let _done = Ticker::new(&count, |k| self.tick(stage, k, jobs));
-            inverse::solve(&folds[j % nf].cfg, self.data, groups[j / nf], inner)
+            let cfg = folds.get(j % per).map(|f| &f.cfg).unwrap_or(self.cfg);
+            inverse::solve(cfg, self.data, groups[j / per], inner)
         });
         let mut out: Vec<Vec<Inverse>> = (0..groups.len()).map(|_| Vec::new()).collect();
         for (j, r) in done.into_iter().enumerate() {
             let r = r?;
             cost.inverse_evaluations += r.predictions * rows;
-            out[j / nf].push(r);
+            out[j / per].push(r);
         }
         cost.inverse_s = self.elapsed() - t;
         Ok(out)
@@ -567,26 +589,31 @@ impl Searcher<'_> {
         inv: &[Vec<Inverse>],
     ) -> Vec<Screened> {
         let mean = self.test_mean(folds);
+        let nf = folds.len();
         let columns: Vec<Vec<Vec<Vec<f64>>>> = inv
             .iter()
-            .map(|per_fold| per_fold.iter().map(|iv| vec![iv.sens.clone()]).collect())
+            .map(|per| per.iter().map(|iv| vec![iv.sens.clone()]).collect())
             .collect();
-        let rows = |g: usize, k: usize| {
-            let iv = &inv[g][k];
+        // group g's factors for fold k: the fold fit's, or the configuration's as given
+        let at = |given: bool, k: usize| if given { nf } else { k };
+        let rows = |g: usize, given: bool, k: usize| {
+            let (iv, cols) = (&inv[g][at(given, k)], &columns[g][at(given, k)]);
             shapes::Rows {
                 lam: &iv.lam,
                 sens: &iv.sens,
                 miss: &iv.miss,
-                cols: &columns[g][k],
+                cols,
             }
         };
-        let designs: Vec<Vec<shapes::Design>> = (0..inv.len())
+        let designs: Vec<[Vec<shapes::Design>; 2]> = (0..inv.len())
             .map(|g| {
-                folds
-                    .iter()
-                    .enumerate()
-                    .map(|(k, f)| shapes::Design::new(&rows(g, k), &f.train))
-                    .collect()
+                [false, true].map(|given| {
+                    folds
+                        .iter()
+                        .enumerate()
+                        .map(|(k, f)| shapes::Design::new(&rows(g, given, k), &f.train))
+                        .collect()
+                })
             })
             .collect();
         side_by_side(plan.len(), self.threads, &|j, _| {
@@ -597,8 +624,8 @@ impl Searcher<'_> {
                 .iter()
                 .enumerate()
                 .map(|(k, f)| {
-                    let r = rows(p.group, k);
-                    let fit = shapes::fit(p.shape, v, &r, &designs[p.group][k]);
+                    let r = rows(p.group, p.given, k);
+                    let fit = shapes::fit(p.shape, v, &r, &designs[p.group][p.given as usize][k]);
                     resid.extend(shapes::residuals(p.shape, v, &r, &f.test, &fit));
                     fit
                 })
