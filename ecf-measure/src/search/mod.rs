@@ -396,14 +396,14 @@ pub(crate) fn search(
     let mut rest: Vec<usize> = (0..short.len()).filter(|j| !fin.contains(j)).collect();
     rest.sort_by(|&a, &b| short[a].cv.total_cmp(&short[b].cv));
     forms.extend(rest.iter().map(|&j| report(j)));
-    let in_short: Vec<usize> = short.iter().map(|x| x.screened).collect();
-    forms.extend(
-        screened
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| !in_short.contains(i))
-            .map(|(_, sc)| s.form(sc, &vars, &groups)),
-    );
+    // each form once, with the better of its two screenings (the list is sorted)
+    let mut listed: Vec<Planned> = short.iter().map(|x| screened[x.screened].plan).collect();
+    for sc in &screened {
+        if !listed.iter().any(|p| p.same_form(&sc.plan)) {
+            listed.push(sc.plan);
+            forms.push(s.form(sc, &vars, &groups));
+        }
+    }
     Ok(Search {
         forms,
         tried: total,

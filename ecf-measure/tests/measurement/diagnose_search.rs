@@ -61,6 +61,15 @@ fn a_strength_falling_with_speed_is_found_and_the_proposal_fits() {
     eprintln!("{} of {} forms in {:.1} s", s.tried, s.total, s.seconds);
     assert_eq!(s.tried, s.total);
     assert_eq!(s.cost.shortlisted, ecf_measure::search::SHORTLIST);
+    // every form reported once
+    let mut keys: Vec<(&str, &str, &str)> = s
+        .forms
+        .iter()
+        .map(|f| (f.target.as_str(), f.variable.as_str(), f.shape.as_str()))
+        .collect();
+    keys.sort();
+    keys.dedup();
+    assert_eq!((keys.len(), s.forms.len()), (s.total, s.total));
     let p = s.proposed.as_ref().expect("a form is proposed");
     assert_eq!(
         (p.target.as_str(), p.variable.as_str()),
