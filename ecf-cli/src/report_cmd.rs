@@ -196,6 +196,9 @@ pub fn report(
         d.folds,
         d.baseline_heldout_cv_rmse_pct
     );
+    if let Some(g) = &d.model_grid {
+        diag += &format!("<p>grid: {}</p>", esc(g));
+    }
     diag += "<table><tr><th>candidate effect</th><th>held-out CV(RMSE) %</th><th>fitted CV(RMSE) %</th><th>why</th></tr>";
     for c in &d.candidates {
         diag += &format!(
