@@ -21,7 +21,7 @@ phase "build the FMU (dist/ecf_contact.fmu)"
 bash scripts/build-fmu.sh >/dev/null
 phase "cargo test (release)"
 cargo test -q --release --workspace
-phase "benchmark smoke run (scripts/bench.sh --quick; figures only, no assertions)"
+phase "benchmark smoke run and cost guard (scripts/bench.sh --quick; fails when an in-run cost ratio passes its limit)"
 bash scripts/bench.sh --quick
 phase "pytest tests-py"
 .venv/bin/python -m pytest -q --durations=15 tests-py
