@@ -282,14 +282,7 @@ pub fn diagnose_opts(
         Some((c, why)) => (c, Some(why.clone())),
         None => (cfg, None),
     };
-    let mut d = run(
-        run_cfg,
-        data,
-        o.threads,
-        o.fit_tolerance,
-        o.search_seconds,
-        progress,
-    )?;
+    let mut d = run(run_cfg, data, noise, o, progress)?;
     d.model_grid = model_grid;
     if looped.is_some() {
         // the proposal keeps the user's grid and scheme
@@ -496,14 +489,15 @@ impl Baseline<'_> {
     }
 }
 
+/// The diagnosis of `cfg` (the grid already chosen) with the data's noise estimate `noise`.
 fn run(
     cfg: &Config,
     data: &Dataset,
-    threads: usize,
-    fit_tolerance: Option<f64>,
-    search_seconds: f64,
+    noise: Option<crate::noise::Noise>,
+    o: &Options,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Diagnosis> {
+    let (threads, search_seconds) = (o.threads, o.search_seconds);
     progress("fitting the configuration as given on the folds");
     // every fit below is judged by its fitted values alone (no standard errors), and repeated
     // model evaluations (start points, best points, rows shared by folds) are looked up
@@ -511,7 +505,7 @@ fn run(
     let opts = FitOptions {
         skip_uncertainties: true,
         memo: Some(&memo),
-        tolerance: fit_tolerance,
+        tolerance: o.fit_tolerance,
     };
     let (pred, warnings) = predict_warned(cfg, data, threads)?;
     let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
@@ -555,7 +549,6 @@ fn run(
         base_heldout,
     );
     // the best model against the noise of the data
-    let noise = crate::noise::estimate(data);
     let (best_model, best_heldout) = match candidates.first() {
         Some(c) if c.heldout_cv_rmse_pct < base_heldout => {
             (c.effect.clone(), c.heldout_cv_rmse_pct)

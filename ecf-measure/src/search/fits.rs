@@ -263,7 +263,7 @@ impl Searcher<'_> {
                 let fit = &sc.fits[k];
                 // the screening's starting point: the fold's fit or the configuration as given
                 let anchor = if p.given { self.cfg } else { &folds[k].cfg };
-                let (c, _) = with_form(anchor, self.base_free, t, p.shape, v, &fit.p, fit.beta[0])?;
+                let (c, _) = with_form(anchor, self.base_free, t, p.shape, v, &fit.p, fit.level)?;
                 let free = form_free(&c, self.base_free, t, false);
                 self.fold_fit(&folds[k], &c, &free, inner, &opts)
             });

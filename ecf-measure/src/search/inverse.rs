@@ -51,16 +51,6 @@ pub(crate) struct Inverse {
     pub predictions: usize,
 }
 
-/// `data` with the log-factor column set to `lam`.
-fn with_column(data: &Dataset, lam: &[f64]) -> Dataset {
-    let mut d = data.clone();
-    d.extra_names.push(COLUMN.to_string());
-    for (r, l) in d.rows.iter_mut().zip(lam) {
-        r.extra.push(*l);
-    }
-    d
-}
-
 /// Solves for every row's log-factor on `target` under `cfg`.
 pub(crate) fn solve(
     cfg: &Config,
@@ -78,10 +68,21 @@ pub(crate) fn solve(
     c.modifiers.push(creep_core::AnyModifier::Formula(fe));
     let meas: Vec<f64> = data.rows.iter().map(|r| r.f).collect();
     let n = meas.len();
+    // the file with the log-factor column, whose values each run sets
+    let mut d = data.clone();
+    d.extra_names.push(COLUMN.to_string());
+    for r in d.rows.iter_mut() {
+        r.extra.push(0.0);
+    }
     let mut predictions = 0;
     let mut model = |lam: &[f64]| -> Result<Vec<f64>> {
         predictions += 1;
-        Ok(predict_with(&c, &with_column(data, lam), threads, None)?
+        for (r, l) in d.rows.iter_mut().zip(lam) {
+            if let Some(x) = r.extra.last_mut() {
+                *x = *l;
+            }
+        }
+        Ok(predict_with(&c, &d, threads, None)?
             .iter()
             .map(|p| p.f)
             .collect())

@@ -579,8 +579,7 @@ impl Searcher<'_> {
     }
 
     /// Every planned form screened: regression on each fold's training rows, scored on its
-    /// test rows (module doc, stage 2). The regression's one column is the level: the slope
-    /// itself.
+    /// test rows (module doc, stage 2).
     fn screen(
         &self,
         plan: &[Planned],
@@ -590,32 +589,15 @@ impl Searcher<'_> {
     ) -> Vec<Screened> {
         let mean = self.test_mean(folds);
         let nf = folds.len();
-        let columns: Vec<Vec<Vec<Vec<f64>>>> = inv
-            .iter()
-            .map(|per| per.iter().map(|iv| vec![iv.sens.clone()]).collect())
-            .collect();
         // group g's factors for fold k: the fold fit's, or the configuration's as given
-        let at = |given: bool, k: usize| if given { nf } else { k };
         let rows = |g: usize, given: bool, k: usize| {
-            let (iv, cols) = (&inv[g][at(given, k)], &columns[g][at(given, k)]);
+            let iv = &inv[g][if given { nf } else { k }];
             shapes::Rows {
                 lam: &iv.lam,
                 sens: &iv.sens,
                 miss: &iv.miss,
-                cols,
             }
         };
-        let designs: Vec<[Vec<shapes::Design>; 2]> = (0..inv.len())
-            .map(|g| {
-                [false, true].map(|given| {
-                    folds
-                        .iter()
-                        .enumerate()
-                        .map(|(k, f)| shapes::Design::new(&rows(g, given, k), &f.train))
-                        .collect()
-                })
-            })
-            .collect();
         side_by_side(plan.len(), self.threads, &|j, _| {
             let p = plan[j];
             let v = &vars[p.var];
@@ -625,7 +607,7 @@ impl Searcher<'_> {
                 .enumerate()
                 .map(|(k, f)| {
                     let r = rows(p.group, p.given, k);
-                    let fit = shapes::fit(p.shape, v, &r, &designs[p.group][p.given as usize][k]);
+                    let fit = shapes::fit(p.shape, v, &r, &f.train);
                     resid.extend(shapes::residuals(p.shape, v, &r, &f.test, &fit));
                     fit
                 })

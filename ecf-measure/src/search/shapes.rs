@@ -136,159 +136,53 @@ impl Shape {
 }
 
 /// The screening's linearised model of a fold. Row i misses the measurement by
-/// `miss[i] + sens[i] (ln g(x[i]) - lam[i]) + X[i] beta` in the traction coefficient, where
-/// `lam[i]` is the log-factor that brings the model onto the measurement, `sens[i]` the
-/// traction coefficient's slope in it, `miss[i]` what is left at `lam[i]` (0 unless the factor
-/// was out of reach), and the columns X the slopes of the traction coefficient in the
-/// diagnosis' free parameters (and in the target's level, where no free parameter sets it):
-/// beta stands for their refit with the form.
+/// `miss[i] + sens[i] (c + ln g(x[i]) - lam[i])` in the traction coefficient, where `lam[i]`
+/// is the log-factor that brings the model onto the measurement, `sens[i]` the traction
+/// coefficient's slope in it, `miss[i]` what is left at `lam[i]` (0 unless the factor was out
+/// of reach) and `c` the target's level, which stands in for the refit of its parameters.
 pub(crate) struct Rows<'a> {
     pub lam: &'a [f64],
     pub sens: &'a [f64],
     pub miss: &'a [f64],
-    /// Columns over all rows.
-    pub cols: &'a [Vec<f64>],
 }
 
 impl Rows<'_> {
-    /// Minus what the form leaves for the columns to explain at row `i` (log-factor `l`).
-    fn target(&self, i: usize, l: f64) -> f64 {
-        -(self.miss[i] + self.sens[i] * (l - self.lam[i]))
+    /// Row `i`'s miss at log-factor `l` and level `c`.
+    fn residual(&self, i: usize, l: f64, c: f64) -> f64 {
+        self.miss[i] + self.sens[i] * (c + l - self.lam[i])
     }
 }
 
-/// The least squares of the columns on some rows: the inverse of their scaled normal matrix.
-pub(crate) struct Design {
-    idx: Vec<usize>,
-    scale: Vec<f64>,
-    inv: Vec<Vec<f64>>,
-}
-
-/// Relative ridge of the normal matrix (scaled columns): keeps nearly collinear columns (the
-/// two strengths' temperature coefficients) solvable without moving a well-posed solution.
-const RIDGE: f64 = 1e-9;
-
-impl Design {
-    /// The design of `rows`' columns on rows `idx`.
-    pub fn new(rows: &Rows, idx: &[usize]) -> Design {
-        let k = rows.cols.len();
-        let scale: Vec<f64> = rows
-            .cols
-            .iter()
-            .map(|c| {
-                let ss: f64 = idx.iter().map(|&i| c[i] * c[i]).sum();
-                if ss > 0.0 {
-                    1.0 / ss.sqrt()
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        let mut a = vec![vec![0.0; k]; k];
-        for (p, row) in a.iter_mut().enumerate() {
-            for (q, x) in row.iter_mut().enumerate() {
-                *x = idx
-                    .iter()
-                    .map(|&i| rows.cols[p][i] * rows.cols[q][i])
-                    .sum::<f64>()
-                    * scale[p]
-                    * scale[q];
-            }
-            row[p] += RIDGE + if scale[p] == 0.0 { 1.0 } else { 0.0 };
-        }
-        Design {
-            idx: idx.to_vec(),
-            scale,
-            inv: invert(a),
-        }
-    }
-
-    /// The coefficients of the columns for targets `y` (one per row of the design).
-    fn solve(&self, rows: &Rows, y: &[f64]) -> Vec<f64> {
-        let k = self.scale.len();
-        let b: Vec<f64> = (0..k)
-            .map(|p| {
-                self.idx
-                    .iter()
-                    .zip(y)
-                    .map(|(&i, yi)| rows.cols[p][i] * yi)
-                    .sum::<f64>()
-                    * self.scale[p]
-            })
-            .collect();
-        (0..k)
-            .map(|p| (0..k).map(|q| self.inv[p][q] * b[q]).sum::<f64>() * self.scale[p])
-            .collect()
-    }
-}
-
-/// The inverse of a small symmetric positive definite matrix (Gauss-Jordan).
-fn invert(mut a: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
-    let k = a.len();
-    let mut inv: Vec<Vec<f64>> = (0..k)
-        .map(|p| (0..k).map(|q| if p == q { 1.0 } else { 0.0 }).collect())
-        .collect();
-    for c in 0..k {
-        let piv = (c..k)
-            .max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))
-            .unwrap_or(c);
-        a.swap(c, piv);
-        inv.swap(c, piv);
-        let d = a[c][c];
-        if d == 0.0 {
-            continue;
-        }
-        for q in 0..k {
-            a[c][q] /= d;
-            inv[c][q] /= d;
-        }
-        for r in 0..k {
-            if r != c {
-                let f = a[r][c];
-                if f != 0.0 {
-                    for q in 0..k {
-                        a[r][q] -= f * a[c][q];
-                        inv[r][q] -= f * inv[c][q];
-                    }
-                }
-            }
-        }
-    }
-    inv
-}
-
-/// A shape fitted to some rows: its parameters and the columns' coefficients.
+/// A shape fitted to some rows: its parameters and the level.
 #[derive(Clone, Debug)]
 pub(crate) struct Fitted {
     pub p: Vec<f64>,
-    pub beta: Vec<f64>,
+    pub level: f64,
 }
 
-/// The coefficients and the sum of squares of the design's rows with the shape at `p`.
-fn profile(shape: Shape, v: &Var, rows: &Rows, d: &Design, p: &[f64]) -> (Vec<f64>, f64) {
-    let y: Vec<f64> = d
-        .idx
+/// The level that minimises the sum of squares of rows `idx` with the shape at `p`, and that
+/// sum.
+fn profile(shape: Shape, v: &Var, rows: &Rows, idx: &[usize], p: &[f64]) -> (f64, f64) {
+    let l: Vec<f64> = idx.iter().map(|&i| shape.ln_factor(v, v.x[i], p)).collect();
+    let (mut num, mut den) = (0.0, 0.0);
+    for (&i, li) in idx.iter().zip(&l) {
+        num += rows.residual(i, *li, 0.0) * rows.sens[i];
+        den += rows.sens[i] * rows.sens[i];
+    }
+    let c = if den > 0.0 { -num / den } else { 0.0 };
+    let ss = idx
         .iter()
-        .map(|&i| rows.target(i, shape.ln_factor(v, v.x[i], p)))
-        .collect();
-    let beta = d.solve(rows, &y);
-    let ss = d
-        .idx
-        .iter()
-        .zip(&y)
-        .map(|(&i, yi)| {
-            let fit: f64 = rows.cols.iter().zip(&beta).map(|(c, b)| c[i] * b).sum();
-            (fit - yi).powi(2)
-        })
+        .zip(&l)
+        .map(|(&i, li)| rows.residual(i, *li, c).powi(2))
         .sum();
-    (beta, ss)
+    (c, ss)
 }
 
-/// Fits `shape` in `v` on the design's rows: a grid over the parameters' bounds, then
-/// golden-section refinement of one parameter at a time around the best grid point.
-pub(crate) fn fit(shape: Shape, v: &Var, rows: &Rows, d: &Design) -> Fitted {
+/// Fits `shape` in `v` to rows `idx`: a grid over the parameters' bounds, then golden-section
+/// refinement of one parameter at a time around the best grid point.
+pub(crate) fn fit(shape: Shape, v: &Var, rows: &Rows, idx: &[usize]) -> Fitted {
     let spec = shape.params();
-    let eval = |p: &[f64]| profile(shape, v, rows, d, p).1;
+    let eval = |p: &[f64]| profile(shape, v, rows, idx, p).1;
     let n = if spec.len() == 1 { 61 } else { 21 };
     let axis = |k: usize| -> Vec<f64> {
         let (lo, hi, none) = (spec[k].1, spec[k].2, spec[k].3);
@@ -345,17 +239,14 @@ pub(crate) fn fit(shape: Shape, v: &Var, rows: &Rows, d: &Design) -> Fitted {
             }
         }
     }
-    let beta = profile(shape, v, rows, d, &best).0;
-    Fitted { p: best, beta }
+    let level = profile(shape, v, rows, idx, &best).0;
+    Fitted { p: best, level }
 }
 
 /// The residuals of rows `idx` under a fitted shape.
 pub(crate) fn residuals(shape: Shape, v: &Var, rows: &Rows, idx: &[usize], f: &Fitted) -> Vec<f64> {
     idx.iter()
-        .map(|&i| {
-            let fit: f64 = rows.cols.iter().zip(&f.beta).map(|(c, b)| c[i] * b).sum();
-            fit - rows.target(i, shape.ln_factor(v, v.x[i], &f.p))
-        })
+        .map(|&i| rows.residual(i, shape.ln_factor(v, v.x[i], &f.p), f.level))
         .collect()
 }
 
@@ -404,23 +295,17 @@ mod tests {
             .collect();
         let sens = vec![0.3; x.len()];
         let miss = vec![0.0; x.len()];
-        // the level's column (the slope itself) and one unrelated column
-        let cols = vec![sens.clone(), x.iter().map(|xi| (xi * 7.0).sin()).collect()];
         let rows = Rows {
             lam: &lam,
             sens: &sens,
             miss: &miss,
-            cols: &cols,
         };
         let idx: Vec<usize> = (0..x.len()).collect();
-        let d = Design::new(&rows, &idx);
-        let f = fit(Shape::Saturating, &v, &rows, &d);
+        let f = fit(Shape::Saturating, &v, &rows, &idx);
         assert!((f.p[0] - truth[0]).abs() < 1e-3, "{:?}", f.p);
         assert!((f.p[1] - truth[1]).abs() < 1e-2, "{:?}", f.p);
-        // the level comes back as the first coefficient, the unrelated column's as 0
-        assert!((f.beta[0] - 0.1).abs() < 1e-3, "{:?}", f.beta);
-        assert!(f.beta[1].abs() < 1e-3, "{:?}", f.beta);
-        let lin = fit(Shape::Linear, &v, &rows, &d);
+        assert!((f.level - 0.1).abs() < 1e-3, "{}", f.level);
+        let lin = fit(Shape::Linear, &v, &rows, &idx);
         let ss = |s: Shape, f: &Fitted| -> f64 {
             residuals(s, &v, &rows, &idx, f).iter().map(|r| r * r).sum()
         };
