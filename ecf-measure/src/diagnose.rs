@@ -36,9 +36,10 @@ pub const AT_NOISE: f64 = 1.5;
 
 /// The search of formula forms runs when the best model's held-out CV(RMSE) is above this
 /// many times the noise level (or the noise cannot be estimated): below [`AT_NOISE`] too, so
-/// that a weak effect is looked for; a proposal must still earn itself (module
-/// [`crate::search`]).
-pub const SEARCH_ABOVE: f64 = 1.2;
+/// that a weak effect is looked for, and at the estimate itself, since the estimate of a
+/// 150-row file scatters by about 10 % around the true noise; a proposal must still earn
+/// itself (module [`crate::search`]).
+pub const SEARCH_ABOVE: f64 = 1.0;
 
 /// |r| from which an extra column counts as showing strong residual structure.
 pub const STRONG: f64 = 0.3;
@@ -575,10 +576,17 @@ fn run(
             &opts,
             best_heldout,
             base_heldout,
+            noise.as_ref().map(|n| n.cv_rmse_pct),
             search_seconds,
             progress,
         )?;
-        verdict += &search_words(&s, noise.as_ref(), best_heldout, search_seconds);
+        verdict += &search_words(
+            &s,
+            noise.as_ref(),
+            best_heldout,
+            base_heldout,
+            search_seconds,
+        );
         Some(s)
     } else {
         None
@@ -686,6 +694,7 @@ fn search_words(
     s: &crate::search::Search,
     noise: Option<&crate::noise::Noise>,
     best_heldout: f64,
+    base_heldout: f64,
     search_seconds: f64,
 ) -> String {
     let c = &s.cost;
@@ -744,13 +753,21 @@ fn search_words(
             )
         }
         (None, Some(f)) => format!(
-            " No form is proposed: the best ({} x {} in {}, held-out {:.2} % against {best_heldout:.2} %) does not lower the configuration's held-out error by {:.0} % with per-row evidence of {} standard errors. {}",
+            " No form is proposed: the best ({} x {} in {}, held-out {:.2} % against {best_heldout:.2} %) does not lower the configuration's held-out error ({base_heldout:.2} %) to {:.2} % or below ({}) with per-row evidence of {} standard errors (it has {:.1}). {}",
             f.target,
             f.shape,
             f.variable,
             f.heldout_cv_rmse_pct,
-            CLAIM_FRACTION * 100.0,
+            crate::search::proposal_bound(base_heldout, noise.map(|n| n.cv_rmse_pct)),
+            match noise {
+                Some(_) => format!(
+                    "{:.0} % of the noise level below it",
+                    crate::search::GAIN_OF_NOISE * 100.0
+                ),
+                None => format!("{:.0} % below it", CLAIM_FRACTION * 100.0),
+            },
             crate::search::EVIDENCE,
+            f.evidence_z,
             match times(best_heldout) {
                 Some(t) if t > AT_NOISE => "What is missing is then not a factor of one variable on one material function: try two variables together (a formula effect of your own), or an effect on another quantity.",
                 _ => "",
