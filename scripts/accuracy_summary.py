@@ -1,4 +1,4 @@
-"""Prints the summary of the accuracy table that docs/model.md section 9 shows.
+"""Prints the summary of the accuracy table that docs/model.md section 9.2 shows.
 
 Reads creep-core/data/accuracy.csv (written by `bash scripts/bench.sh --only accuracy`) and
 prints, per preset and case, the cheapest grid and scheme whose largest F_x error is at most
