@@ -9,10 +9,12 @@
 #![deny(unsafe_code)]
 #![warn(clippy::too_many_lines)] // at most 150 lines a function (clippy.toml)
 
+pub mod arrays;
 #[allow(unsafe_code)]
 pub mod ffi;
 pub mod instance;
 pub mod model_description;
+pub mod model_description3;
 pub mod settings;
 pub mod state;
 pub mod vars;
