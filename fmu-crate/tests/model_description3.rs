@@ -2,6 +2,8 @@
 //!
 //! Regenerate after changing the table: `ECF_FMU_WRITE_MD=1 cargo test -p ecf-fmu --test model_description3`.
 
+mod common;
+use common::for_fmi_schema;
 use ecf_contact::arrays::{ARRAYS, VR_N_FIELD, VR_TIME};
 use ecf_contact::model_description::MODEL_IDENTIFIER;
 use ecf_contact::model_description3::{self, type_name};
@@ -12,29 +14,6 @@ use fmi_schema::fmi3::{
 };
 use fmi_schema::traits::FmiModelDescription;
 use std::path::PathBuf;
-
-/// The XML as fmi-schema 0.8 reads it (the file itself follows the standard's schema): its
-/// FMI 3.0 BaseUnit takes the exponents of kelvin and ampere as `k` and `a`, where
-/// fmi3Unit.xsd (and fmpy) name them `K` and `A`, and its Float64 variables refuse the
-/// attribute `unit` of fmi3RealBaseAttributes. The units are checked on the text.
-pub fn for_fmi_schema(xml: &str) -> String {
-    let mut out = String::with_capacity(xml.len());
-    for line in xml.replace(" K=\"", " k=\"").lines() {
-        let l = match (
-            line.trim_start().starts_with("<Float64 "),
-            line.find(" unit=\""),
-        ) {
-            (true, Some(a)) => {
-                let b = a + 7 + line[a + 7..].find('"').unwrap_or(0) + 1;
-                format!("{}{}", &line[..a], &line[b..])
-            }
-            _ => line.to_string(),
-        };
-        out.push_str(&l);
-        out.push('\n');
-    }
-    out
-}
 
 fn path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../modelDescription/fmi3/modelDescription.xml")
