@@ -67,6 +67,45 @@ pub(crate) fn fnv1a(data: &[u8]) -> u64 {
 
 const GUID_PLACEHOLDER: &str = "@GUID@";
 
+/// The unit, min, max and start attributes of a variable (the same in the FMI 2.0 and 3.0
+/// model descriptions); a String's start only if `string_start` (FMI 3.0 gives it as an
+/// element).
+pub(crate) fn value_attributes(v: &Var, string_start: bool) -> String {
+    let mut attrs = String::new();
+    if let Some(u) = v.unit {
+        let _ = write!(attrs, " unit=\"{}\"", xml_escape(u));
+    }
+    let bound = |x: f64| match v.kind {
+        Kind::Integer => format!("{}", x as i64),
+        _ => xml_double(x),
+    };
+    if matches!(v.kind, Kind::Real | Kind::Integer) {
+        if let Some(m) = v.min {
+            let _ = write!(attrs, " min=\"{}\"", bound(m));
+        }
+        if let Some(m) = v.max {
+            let _ = write!(attrs, " max=\"{}\"", bound(m));
+        }
+    }
+    match &v.start {
+        Start::None => {}
+        Start::Real(x) => {
+            let _ = write!(attrs, " start=\"{}\"", xml_double(*x));
+        }
+        Start::Integer(i) => {
+            let _ = write!(attrs, " start=\"{i}\"");
+        }
+        Start::Boolean(b) => {
+            let _ = write!(attrs, " start=\"{b}\"");
+        }
+        Start::String(s) if string_start => {
+            let _ = write!(attrs, " start=\"{}\"", xml_escape(s));
+        }
+        Start::String(_) => {}
+    }
+    attrs
+}
+
 fn scalar_variable(out: &mut String, index: usize, v: &Var) {
     let causality = match v.causality {
         Causality::Parameter => "parameter",
@@ -86,44 +125,7 @@ fn scalar_variable(out: &mut String, index: usize, v: &Var) {
         v.vr,
         xml_escape(&v.description)
     );
-    let mut attrs = String::new();
-    if let Some(u) = v.unit {
-        let _ = write!(attrs, " unit=\"{}\"", xml_escape(u));
-    }
-    match v.kind {
-        Kind::Real => {
-            if let Some(m) = v.min {
-                let _ = write!(attrs, " min=\"{}\"", xml_double(m));
-            }
-            if let Some(m) = v.max {
-                let _ = write!(attrs, " max=\"{}\"", xml_double(m));
-            }
-        }
-        Kind::Integer => {
-            if let Some(m) = v.min {
-                let _ = write!(attrs, " min=\"{}\"", m as i64);
-            }
-            if let Some(m) = v.max {
-                let _ = write!(attrs, " max=\"{}\"", m as i64);
-            }
-        }
-        _ => {}
-    }
-    match &v.start {
-        Start::None => {}
-        Start::Real(x) => {
-            let _ = write!(attrs, " start=\"{}\"", xml_double(*x));
-        }
-        Start::Integer(i) => {
-            let _ = write!(attrs, " start=\"{i}\"");
-        }
-        Start::Boolean(b) => {
-            let _ = write!(attrs, " start=\"{b}\"");
-        }
-        Start::String(s) => {
-            let _ = write!(attrs, " start=\"{}\"", xml_escape(s));
-        }
-    }
+    let attrs = value_attributes(v, true);
     let _ = writeln!(out, "      <{}{attrs}/>", v.kind.name());
     let _ = writeln!(out, "    </ScalarVariable>");
 }

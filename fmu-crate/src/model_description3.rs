@@ -1,7 +1,9 @@
 //! Writes the FMI 3.0 Co-Simulation modelDescription.xml from the same variable table as the 2.0 one, plus `time`, the structural parameter `n_field` and the field arrays; the instantiation token is a hash of the rest of the file.
 
 use crate::arrays::{self, ARRAYS, N_FIELD_MAX, VR_N_FIELD, VR_TIME};
-use crate::model_description::{common_elements, fnv1a, xml_double, xml_escape, MODEL_IDENTIFIER};
+use crate::model_description::{
+    common_elements, fnv1a, value_attributes, xml_escape, MODEL_IDENTIFIER,
+};
 use crate::vars::{self, Causality, Kind, Start, Var};
 use std::fmt::Write;
 
@@ -38,41 +40,15 @@ fn variable(o: &mut String, v: &Var) {
         v.vr,
         xml_escape(&v.description)
     );
-    if let Some(u) = v.unit {
-        let _ = write!(attrs, " unit=\"{}\"", xml_escape(u));
-    }
-    let bound = |x: f64| match v.kind {
-        Kind::Integer => format!("{}", x as i64),
-        _ => xml_double(x),
-    };
-    if matches!(v.kind, Kind::Real | Kind::Integer) {
-        if let Some(m) = v.min {
-            let _ = write!(attrs, " min=\"{}\"", bound(m));
-        }
-        if let Some(m) = v.max {
-            let _ = write!(attrs, " max=\"{}\"", bound(m));
-        }
-    }
-    match &v.start {
-        Start::None => {}
-        Start::Real(x) => {
-            let _ = write!(attrs, " start=\"{}\"", xml_double(*x));
-        }
-        Start::Integer(i) => {
-            let _ = write!(attrs, " start=\"{i}\"");
-        }
-        Start::Boolean(b) => {
-            let _ = write!(attrs, " start=\"{b}\"");
-        }
-        // a String's start is an element of its own in FMI 3.0
-        Start::String(s) => {
-            let _ = writeln!(
-                o,
-                "    <{t}{attrs}>\n      <Start value=\"{}\"/>\n    </{t}>",
-                xml_escape(s)
-            );
-            return;
-        }
+    attrs.push_str(&value_attributes(v, false));
+    // a String's start is an element of its own in FMI 3.0
+    if let Start::String(s) = &v.start {
+        let _ = writeln!(
+            o,
+            "    <{t}{attrs}>\n      <Start value=\"{}\"/>\n    </{t}>",
+            xml_escape(s)
+        );
+        return;
     }
     let _ = writeln!(o, "    <{t}{attrs}/>");
 }

@@ -285,19 +285,7 @@ pub unsafe extern "C" fn fmi3GetString(
             if let Err(s) = check_count(comp, part, F, vrs, out.len()) {
                 return s;
             }
-            comp.strings.clear();
-            for r in vrs {
-                match comp.inst.get_string(*r) {
-                    Ok(s) => comp
-                        .strings
-                        .push(CString::new(s.replace('\0', " ")).unwrap_or_default()),
-                    Err(s) => return s,
-                }
-            }
-            for (o, s) in out.iter_mut().zip(comp.strings.iter()) {
-                *o = s.as_ptr();
-            }
-            Status::Ok
+            super::super::values::get_strings(comp, vrs, out)
         })
     }
 }
@@ -329,16 +317,12 @@ pub unsafe extern "C" fn fmi3SetString(
                     vrs.len()
                 ));
             }
-            let mut items = Vec::with_capacity(vals.len());
-            for (r, p) in vrs.iter().zip(vals.iter()) {
-                let Some(s) = cstr(*p) else {
-                    return comp.inst.error(format!(
-                        "{F}: value for value reference {r} is a null pointer or not UTF-8; no value of this call was applied"
-                    ));
-                };
-                items.push(Value::String(s.to_string()));
+            match super::super::values::string_values(comp, F, vrs, vals) {
+                Ok(items) => {
+                    set_values(comp, part, F, vrs, items.into_iter().map(|i| i.1).collect())
+                }
+                Err(s) => s,
             }
-            set_values(comp, part, F, vrs, items)
         })
     }
 }
