@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets everything up and runs every test: formatting, clippy, the Rust tests (physics,
-# CLI, FMU through its exported functions and through the rust-fmi importer) and the Python
-# tests (FMU through fmpy and fmutool, drive-train demo).
+# CLI, the FMI 2.0 and 3.0 FMUs through their exported functions and through the rust-fmi
+# importer) and the Python tests (both FMUs through fmpy and fmutool, the C driver natively,
+# under Wine and under qemu-user, drive-train demo).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Each phase prints its wall time (s) so a slow CI run shows where the time went.
@@ -19,7 +20,7 @@ phase "cargo fmt --check"
 cargo fmt --all --check
 phase "cargo clippy -D warnings"
 cargo clippy -q --workspace --all-targets -- -D warnings
-phase "build the FMU (dist/ecf_contact.fmu)"
+phase "build the FMUs (dist/ecf_contact.fmu: FMI 2.0, dist/ecf_contact_fmi3.fmu: FMI 3.0)"
 bash scripts/build-fmu.sh >/dev/null
 phase "cargo test (release)"
 cargo test -q --release --workspace
