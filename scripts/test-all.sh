@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets everything up and runs every test: formatting, clippy, the Rust tests (physics,
 # CLI, FMU through its exported functions and through the rust-fmi importer) and the Python
-# tests (FMU through fmpy and fmutool, drive-train demo).
+# tests (the Python package ecf from its wheel, FMU through fmpy and fmutool, drive-train demo).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Each phase prints its wall time (s) so a slow CI run shows where the time went.
@@ -23,6 +23,9 @@ phase "cargo test (release)"
 cargo test -q --release --workspace
 phase "benchmark smoke run and cost guard (scripts/bench.sh --quick; fails when an in-run cost ratio passes its limit)"
 bash scripts/bench.sh --quick
+phase "Python package ecf: the Linux wheel (scripts/build-wheel.sh --linux-only) in a fresh venv, its tests against the CLI"
+bash scripts/build-wheel.sh --linux-only >/dev/null
+bash scripts/test-wheel.sh
 phase "pytest tests-py"
 .venv/bin/python -m pytest -q --durations=15 tests-py
 phase "drive-train frequency regression (python -m drivetrain_demo regress drivetrain-demo/baselines/ci.json)"
