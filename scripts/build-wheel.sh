@@ -4,7 +4,8 @@
 # manylinux2014_x86_64  glibc >= 2.17, linked through zig (maturin --zig, as the FMU's linux64)
 # win_amd64             MinGW-w64 (as the FMU's win64), python3.dll's import library made by
 #                       pyo3 (generate-import-lib), no MinGW runtime DLL needed
-# macosx_11_0_universal2 x86_64 + arm64 in one extension (as the FMU's darwin64), arm64 signed
+# macosx_11_0_universal2 x86_64 + arm64 in one extension (as the FMU's darwin64), arm64 signed;
+#                       tagged universal2, arm64 and x86_64 (pip on either Mac takes it)
 #
 # Windows and macOS are cross-built with Debian's Rust (rustc-web) and -Zbuild-std, in the
 # FMU's cross target directory (target/cross), because rustup's targets cannot be downloaded
@@ -103,9 +104,9 @@ if [ "$LINUX_ONLY" != 1 ]; then
     CARGO_TARGET_X86_64_APPLE_DARWIN_RUSTFLAGS="-C linker-flavor=ld64.lld" \
     CARGO_TARGET_AARCH64_APPLE_DARWIN_RUSTFLAGS="-C linker-flavor=ld64.lld" \
     maturin build "${MAN[@]}" --target universal2-apple-darwin -Zbuild-std=std,panic_unwind >&2
-  WM=$(ls "$OUT"/ecf-*macosx*universal2.whl)
+  WM=$(ls "$OUT"/ecf-*macosx*universal2*.whl)
   tags=$(unpack "$WM" mac)
-  [ "$tags" = "cp39-abi3-macosx_11_0_universal2" ] || fail "$WM: tags '$tags'"
+  [ "$tags" = "cp39-abi3-macosx_11_0_arm64 cp39-abi3-macosx_11_0_universal2 cp39-abi3-macosx_11_0_x86_64" ] || fail "$WM: tags '$tags'"
   MSO="$STAGE/mac/ecf/_ecf.abi3.so"
   [ -f "$MSO" ] || fail "$WM holds no ecf/_ecf.abi3.so"
   archs=$(llvm-lipo-22 -archs "$MSO" | xargs)

@@ -3,7 +3,7 @@
 #
 # The FMU's link-darwin.sh filters the export list to _fmi2*; the extension keeps rustc's list
 # as it is. pyo3 asks for `-undefined dynamic_lookup` (the interpreter provides Python's
-# symbols at load time), which ld64.lld takes. libSystem comes from the SDK that rustc names
+# symbols at load time), which ld64.lld takes; maturin's `-Wl,-install_name,...` is unwrapped. libSystem comes from the SDK that rustc names
 # with -syslibroot ($SDKROOT; scripts/build-wheel.sh makes the same minimal one as
 # scripts/build-fmu.sh). Environment: ECF_LD64 (default ld64.lld-22).
 set -euo pipefail
@@ -11,7 +11,10 @@ args=()
 while [ $# -gt 0 ]; do
   case "$1" in
     -lc|-lm) shift ;;           # both are libSystem on macOS
+    -liconv) shift ;;           # std names it, uses none of it; the minimal SDK has no stub
     -flavor) shift 2 ;;         # rustc names the flavour; ld64.lld knows its own
+    -Wl,*)                      # a compiler driver's form (maturin's install name): unwrapped
+      IFS=, read -r -a parts <<<"${1#-Wl,}"; args+=("${parts[@]}"); shift ;;
     *) args+=("$1"); shift ;;
   esac
 done
