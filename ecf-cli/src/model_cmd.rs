@@ -17,8 +17,8 @@ pub(crate) enum SchemeArg {
     /// Continuous sub-steps of up to 8 cells: 2-4x faster on 80x21 at 0.1-1 ms steps, its
     /// dependence on the time step up to about 1 %
     Continuous,
-    /// Cell by cell with higher-order rules along each move (docs/model.md section 9, step
-    /// 8): about twice the cost of cells on the same grid, more accurate at equal cost; ECF's
+    /// Cell by cell with higher-order rules along each move (docs/model.md section 3.3):
+    /// about twice the cost of cells on the same grid, more accurate at equal cost; ECF's
     /// default
     CellsHo,
 }
@@ -57,15 +57,15 @@ impl TransientArgs {
 enum SteadySchemeArg {
     /// Cell by cell (the first-order reference; FASTSIM's default)
     Cells,
-    /// Cell by cell with the higher-order rules along each move (docs/model.md section 9,
-    /// step 8; ECF's default)
+    /// Cell by cell with the higher-order rules along each move (docs/model.md section 3.3;
+    /// ECF's default)
     CellsHo,
 }
 
 #[derive(Args, Clone)]
 pub(crate) struct SteadyArgs {
     /// How the steady march integrates a move: cells or cells-ho (higher-order rules along
-    /// each move; docs/model.md sections 3 and 9). Default: the scheme --tol chooses among
+    /// each move; docs/model.md section 3.3). Default: the scheme --tol chooses among
     /// these two, else the configuration's (cells-ho for ECF, cells for FASTSIM, unless
     /// --config names another)
     #[arg(long, value_enum)]
