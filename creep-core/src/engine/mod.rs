@@ -39,6 +39,7 @@ mod strip;
 
 pub use crate::hertz::patch_for;
 pub use crate::material::layer_material;
+pub use crate::scheme::Scheme;
 pub use fastpath::FastPath;
 pub use io::{FieldPoint, Inputs, Outputs, V_STANDSTILL};
 pub(crate) use raw_state::OwnedRawState;
@@ -50,74 +51,6 @@ use crate::hertz::Patch;
 use crate::kalker;
 use crate::material::Resolved;
 use crate::thermal::{self, Kernel, N_KERNEL};
-
-/// How [`Contact::step`] advances the bristles that were in the contact before the step.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Scheme {
-    /// Default: one sub-step per cell crossing for every bristle (the steady march's cells),
-    /// new bristles by a march. Independent of the communication step within 0.5 %.
-    CellsMarch,
-    /// Faster (about 3x fewer bristle moves at 0.1-0.25 ms steps on 80x21): the bristles
-    /// that stay move continuously, in equal sub-steps of at most [`MAX_SUBSTEP_CELLS`]
-    /// cells, cut into one-cell pieces within [`EDGE_CELLS`] cells of the trailing edge and
-    /// ending each step with a one-cell piece; a sub-step of n > 1 cells weighs its start
-    /// stress by (1 - 1/n)/2 in its dissipation (Eq. 4.29), as n one-cell moves would.
-    /// Bristles that enter during the step are marched cell by cell. On 80x21 its
-    /// dependence on the communication step after a creepage step at 20 m/s (1 x 1 ms vs
-    /// 10 x 0.1 ms) is 0.05-0.4 % for table4.1 (within the grid's own error) and 0.9-1.5 %
-    /// for dry; forces under inputs that jump every step follow [`Scheme::CellsMarch`]
-    /// within 1.5 % (docs/model.md section 3).
-    Continuous,
-    /// Reference: one sub-step per cell crossing for every bristle, no march (slowest).
-    Cells,
-    /// [`Scheme::CellsMarch`] with the higher-order rules along each move (ECF's
-    /// same-characteristic law; docs/model.md section 9, step 8): tau_c2 linear and 1/L_p
-    /// along the move's temperature profile from the start material's to the end
-    /// material's, the newest interval of Eq. 4.35 with the heat rate linear over the move,
-    /// the move from the leading edge in [`advance::EDGE_SUB`] graded sub-moves, and the
-    /// leading cell's sqrt(s) term in the quadrature. About twice the cost of
-    /// [`Scheme::CellsMarch`] on the same grid, and more accurate on a grid of equal cost.
-    /// FASTSIM (and any other perfectly plastic or elastic-unloading layer) takes
-    /// [`Scheme::CellsMarch`].
-    CellsHigher,
-}
-
-impl Scheme {
-    /// The names a configuration file and the command line give the schemes.
-    pub const NAMES: &'static str = "cells, cells-ho or continuous";
-
-    /// The scheme's name in a configuration file, the accuracy table and on the command
-    /// line (`cells` is [`Scheme::CellsMarch`]; the reference [`Scheme::Cells`] too).
-    pub fn name(self) -> &'static str {
-        match self {
-            Scheme::Continuous => "continuous",
-            Scheme::CellsMarch | Scheme::Cells => "cells",
-            Scheme::CellsHigher => "cells-ho",
-        }
-    }
-
-    /// The scheme a model runs when its configuration names none: `cells-ho` for ECF (on the
-    /// default grid 80x21 its steady curves are within 0.2 % of 640x168 for dry, table4.1
-    /// and wet at 5-30 m/s where `cells` was up to 1.2 %, for about 10 % more cost in steady
-    /// curves and twice the cost in time steps; docs/model.md section 9), `cells` for
-    /// FASTSIM and Polach (their layers take the cell-by-cell rules in any case).
-    pub fn default_for(model: crate::ModelKind) -> Scheme {
-        match model {
-            crate::ModelKind::Ecf => Scheme::CellsHigher,
-            crate::ModelKind::Fastsim | crate::ModelKind::Polach => Scheme::CellsMarch,
-        }
-    }
-
-    /// The scheme of a name ([`Scheme::name`]), None for any other text.
-    pub fn by_name(name: &str) -> Option<Scheme> {
-        match name {
-            "cells" => Some(Scheme::CellsMarch),
-            "continuous" => Some(Scheme::Continuous),
-            "cells-ho" => Some(Scheme::CellsHigher),
-            _ => None,
-        }
-    }
-}
 
 /// Normal forces at or below this (N) are lift-off: the contact carries nothing. (The
 /// contact length shrinks like F_N^(1/3); a vanishing contact is not a tiny one.)
@@ -198,6 +131,9 @@ pub struct Contact {
     pool: Option<std::sync::Arc<rayon::ThreadPool>>,
     /// How a step advances the bristles (see [`Scheme`]).
     scheme: Scheme,
+    /// The cell schemes march the bristles that enter during a step (off: the plain sub-step
+    /// loop for every bristle, the reference a test compares the march with).
+    march_new: bool,
     /// The higher-order rules apply ([`Scheme::CellsHigher`] on an ECF layer under the
     /// same-characteristic rule).
     ho: bool,
@@ -288,6 +224,7 @@ impl Contact {
             initialized: false,
             warnings: Vec::new(),
             scheme: cfg.scheme,
+            march_new: true,
             ho: false,
             start_cache: true,
             reversed: false,
@@ -588,11 +525,7 @@ impl Contact {
     /// bristle). For tests that show both give identical results.
     #[doc(hidden)]
     pub fn set_march_new_bristles(&mut self, on: bool) {
-        self.scheme = if on {
-            Scheme::CellsMarch
-        } else {
-            Scheme::Cells
-        };
+        self.march_new = on;
     }
 
     /// Switches the higher-order rules' cached start nodes off (each move's start node then

@@ -20,7 +20,8 @@
 use super::kin::Kin;
 use super::Contact;
 use crate::bristle::{BristleState, Material, Move, Regime, Rule, SofteningPath};
-use crate::material::{exp_fast, exp_pair, NodeP};
+use crate::fastexp::{exp_fast, exp_pair};
+use crate::material::NodeP;
 use crate::thermal::{self, StepFactors, N_KERNEL};
 
 impl Contact {

@@ -1,6 +1,6 @@
 //! One strip of the bristle grid as a unit of work: its bristles, ring buffer and caches borrowed out of the contact, so that strips advance independently (on several threads with `threads`).
 
-use super::{Contact, Scheme};
+use super::Contact;
 use crate::bristle::BristleState;
 use crate::material::NodeP;
 use crate::thermal::{StepFactors, N_KERNEL};
@@ -245,7 +245,7 @@ impl Contact {
         let j = sp.j;
         let v = self.inputs.v;
         let a = self.patch.a;
-        let march = matches!(self.scheme, Scheme::CellsMarch | Scheme::CellsHigher);
+        let march = self.march_new;
         let dx = 2.0 * self.ell[j] * a / self.nx as f64;
         let mut remaining = v * dt;
         let tol = 1e-9 * dx;
