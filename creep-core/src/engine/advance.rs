@@ -24,7 +24,7 @@ pub const EDGE_SUB: usize = 4;
 impl Contact {
     #[inline]
     pub(super) fn idx(&self, j: usize, slot: usize) -> usize {
-        j * (self.nx + 1) + (self.head[j] + slot) % (self.nx + 1)
+        j * (self.nx + 1) + (self.state.head[j] + slot) % (self.nx + 1)
     }
 
     /// One sub-step of strip `sp`: bristles move by `dist` (m) in time `h` (s); the phase is
@@ -385,7 +385,7 @@ impl Contact {
         let kin_part = self.kin(time(d_end), d_end);
         let fac_part = self.factors(sp.fac, time(d_end), kin_part.heat);
         let mut s = BristleState {
-            temp: self.inputs.t_bulk,
+            temp: self.state.run.inputs.t_bulk,
             ..BristleState::default()
         };
         let mut acc = [0.0; N_KERNEL];
@@ -470,7 +470,7 @@ impl Contact {
         let du0 = d * (kin.cx - kin.cs * y);
         let dt0 = d * (kin.cx * ilx - kin.cs * y * ils);
         let mut s = BristleState {
-            temp: self.inputs.t_bulk,
+            temp: self.state.run.inputs.t_bulk,
             ..BristleState::default()
         };
         for k in 0..count {
@@ -518,7 +518,7 @@ impl Contact {
         *sp.head = (*sp.head + self.nx) % nx1;
         let id = sp.slot(0);
         sp.st[id] = BristleState {
-            temp: self.inputs.t_bulk,
+            temp: self.state.run.inputs.t_bulk,
             ..BristleState::default()
         };
         sp.acc[id] = [0.0; N_KERNEL];
@@ -533,7 +533,7 @@ impl Contact {
     /// strip's new phase (the entries are counted in closed form: bounded work however long
     /// the step or small the contact).
     pub(super) fn march_all(&self, sp: &mut Strip, dt: f64) {
-        let dist = self.inputs.v * dt;
+        let dist = self.state.run.inputs.v * dt;
         let dx = 2.0 * self.ell[sp.j] * self.patch.a / self.nx as f64;
         let cells = *sp.phase + dist / dx;
         let ph = (cells - (cells + 1e-9).floor()).max(0.0);
@@ -556,7 +556,7 @@ impl Contact {
     /// of a step is bounded by about one sweep times `n_sub`, however far it rolls: a step
     /// that rolls past the whole contact (v dt >= 2a) is the steady state of its inputs.
     pub(super) fn advance_continuous(&self, sp: &mut Strip, dt: f64) {
-        let v = self.inputs.v;
+        let v = self.state.run.inputs.v;
         let a = self.patch.a;
         let nx = self.nx;
         let j = sp.j;

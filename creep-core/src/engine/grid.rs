@@ -59,7 +59,7 @@ impl Contact {
     pub(super) fn weights(&self, j: usize, w: &mut [f64]) {
         let nx = self.nx;
         let dxi = 2.0 * self.ell[j] / nx as f64;
-        let ph = self.phase[j];
+        let ph = self.state.phase[j];
         for x in w.iter_mut() {
             *x = 0.0;
         }
@@ -94,19 +94,19 @@ impl Contact {
             };
             let dxi = 2.0 * self.ell[j] / nx as f64;
             let lead = if self.ho && nx >= 3 {
-                lead_correction(self.phase[j], dxi)
+                lead_correction(self.state.phase[j], dxi)
             } else {
                 [0.0; 2]
             };
             for (slot, wk) in w.iter().enumerate() {
-                let s = &self.st[self.idx(j, slot)];
+                let s = &self.state.st[self.idx(j, slot)];
                 let da = wk * a * dy;
                 // the forces' and the power's weight: with the leading cell's term
                 let df = match slot {
                     1 | 2 => (wk + lead[slot - 1]) * a * dy,
                     _ => da,
                 };
-                let x = a * (self.ell[j] - (slot as f64 + self.phase[j]) * dxi);
+                let x = a * (self.ell[j] - (slot as f64 + self.state.phase[j]) * dxi);
                 fx += s.tau[0] * df;
                 fy += s.tau[1] * df;
                 mz += (x * s.tau[1] - y * s.tau[0]) * df;
@@ -119,7 +119,7 @@ impl Contact {
                 }
             }
         }
-        let fn_n = self.inputs.fn_n;
+        let fn_n = self.state.run.inputs.fn_n;
         let area = area.max(f64::MIN_POSITIVE);
         Outputs {
             fx,
@@ -129,7 +129,7 @@ impl Contact {
             t_max: if tmax.is_finite() {
                 tmax
             } else {
-                self.inputs.t_bulk
+                self.state.run.inputs.t_bulk
             },
             t_mean: tsum / area,
             p_fric: pf,
@@ -149,19 +149,27 @@ impl Contact {
             .unwrap_or(0);
         let nx = self.nx;
         let dxi = 2.0 * self.ell[j] / nx as f64;
-        let inside = if self.phase[j] > 0.0 { nx } else { nx + 1 };
+        let inside = if self.state.phase[j] > 0.0 {
+            nx
+        } else {
+            nx + 1
+        };
         (0..inside)
             .map(|slot| {
-                let xi = self.ell[j] - (slot as f64 + self.phase[j]) * dxi;
-                let s = &self.st[self.idx(j, slot)];
+                let xi = self.ell[j] - (slot as f64 + self.state.phase[j]) * dxi;
+                let s = &self.state.st[self.idx(j, slot)];
                 let np = self.r.node_p(&self.patch, xi, self.eta[j]);
-                let v = self.inputs.v;
+                let v = self.state.run.inputs.v;
                 let slip = v
-                    * (self.inputs.cx - self.inputs.spin * self.eta[j] * self.patch.b)
-                        .hypot(self.inputs.cy + self.inputs.spin * xi * self.patch.a);
+                    * (self.state.run.inputs.cx
+                        - self.state.run.inputs.spin * self.eta[j] * self.patch.b)
+                        .hypot(
+                            self.state.run.inputs.cy
+                                + self.state.run.inputs.spin * xi * self.patch.a,
+                        );
                 let m = self.material(&np, s.temp, s.u[0].hypot(s.u[1]), slip);
                 // rolling backwards: the grid is held mirrored (x -> -x, tau_x -> -tau_x)
-                let sgn = if self.reversed { -1.0 } else { 1.0 };
+                let sgn = if self.state.run.reversed { -1.0 } else { 1.0 };
                 FieldPoint {
                     x: sgn * xi * self.patch.a,
                     tau: (s.tau[0] * s.tau[0] + s.tau[1] * s.tau[1]).sqrt(),

@@ -60,7 +60,7 @@ pub(super) fn trapezoid_stress(new: [f64; 2], old: [f64; 2]) -> [f64; 2] {
 impl Contact {
     /// Kinematic/thermal context for a sub-step of duration `h` moving distance `dist`.
     pub(super) fn kin(&self, h: f64, dist: f64) -> Kin {
-        let i = &self.inputs;
+        let i = &self.state.run.inputs;
         let heat = i.v > V_STANDSTILL && h > 0.0;
         let vw = i.v * (1.0 + i.cx).abs();
         // with surface_time_flash alpha sqrt(v / v_w): Eq. 4.34 over the wheel surface's

@@ -15,9 +15,9 @@
 //! every node, which is exactly the grid the transient step reaches after 2a/v with constant
 //! inputs (tested bit for bit).
 //!
-//! Where each job lives: this file holds the contact's state and the time loop (`step`,
-//! `steady`); `raw_state` that state borrowed out and restored for module [`crate::state`];
-//! [`io`] the inputs and outputs; `strip` one strip as a unit of
+//! Where each job lives: this file holds the contact and the time loop (`step`, `steady`);
+//! `grid_state` the state that is saved and restored, with its byte layout (module
+//! [`crate::state`] frames it); [`io`] the inputs and outputs; `strip` one strip as a unit of
 //! work (its state borrowed out of the contact, the strips of a step on `threads` threads)
 //! and the cell-by-cell scheme; `advance` one bristle move, the sub-step loop and march;
 //! `grid` the integrals and fields; `modifiers` the formula and custom effects; `softening`
@@ -29,10 +29,10 @@ mod advance;
 mod bristle_move;
 mod fastpath;
 mod grid;
+pub(crate) mod grid_state;
 pub mod io;
 mod kin;
 mod modifiers;
-mod raw_state;
 mod softening;
 mod steady_coulomb;
 mod strip;
@@ -42,7 +42,6 @@ pub use crate::material::layer_material;
 pub use crate::scheme::Scheme;
 pub use fastpath::FastPath;
 pub use io::{FieldPoint, Inputs, Outputs, V_STANDSTILL};
-pub(crate) use raw_state::OwnedRawState;
 
 use crate::bristle::{BristleState, Regime};
 use crate::config::{Config, Geometry, ModelKind};
@@ -51,6 +50,7 @@ use crate::hertz::Patch;
 use crate::kalker;
 use crate::material::Resolved;
 use crate::thermal::{self, Kernel, N_KERNEL};
+use grid_state::GridState;
 
 /// Normal forces at or below this (N) are lift-off: the contact carries nothing. (The
 /// contact length shrinks like F_N^(1/3); a vanishing contact is not a tiny one.)
@@ -91,29 +91,12 @@ pub struct Contact {
     eta: Vec<f64>,
     ell: Vec<f64>,
     deta: Vec<f64>,
-    /// Ring-buffer head and phase per strip.
-    head: Vec<usize>,
-    phase: Vec<f64>,
-    /// Bristle state (index j * (nx + 1) + slot).
-    st: Vec<BristleState>,
-    acc: Vec<[f64; N_KERNEL]>,
-    /// Whole-cell commit: each bristle's state and accumulators at its last lattice node
-    /// (`st`, `acc` hold it at the strip's phase, for the outputs), and per strip the part
-    /// of the current cell travelled since (see [`Partial`]).
-    node_st: Vec<BristleState>,
-    /// Heat-kernel accumulators at the last lattice node (same index as `node_st`), J/m^2.
-    node_acc: Vec<[f64; N_KERNEL]>,
-    /// Per strip, the part of the current cell travelled since that node.
-    part: Vec<Partial>,
-    /// Time since start, s.
-    time: f64,
-    inputs: Inputs,
+    /// What is saved and restored: time, last inputs and outputs, flags and the bristles.
+    state: GridState,
     patch: Patch,
     /// Normal force (N) that `patch` and `flex` belong to (NaN: none yet).
     patch_fn: f64,
     flex: (f64, f64, f64),
-    out: Outputs,
-    initialized: bool,
     warnings: Vec<String>,
     /// Temperature tolerance of the local solve, K ([`thermal::temperature_tolerance`] of the
     /// largest temperature coefficient).
@@ -141,9 +124,6 @@ pub struct Contact {
     /// sub-move) where a move starts on a node; off: each computed where the move starts
     /// (for a test that shows both agree).
     start_cache: bool,
-    /// Rolling backwards (the last non-zero speed was negative): the grid and `inputs`,
-    /// `out` are held in the mirrored frame x -> -x, where the contact rolls forwards.
-    reversed: bool,
     /// The configuration's formula and Rust effects at the current operating point.
     modifiers: modifiers::Modifiers,
     /// True if moves with heat flow take the scalar temperature solve of `softening`
@@ -192,7 +172,6 @@ impl Contact {
             grid::strip_rule(ny).into_iter().unzip()
         };
         let ell = eta.iter().map(|e| (1.0 - e * e).sqrt()).collect();
-        let n = ny * (nx + 1);
         let patch = Patch {
             a: 1.0,
             b: 1.0,
@@ -208,26 +187,15 @@ impl Contact {
             eta,
             ell,
             deta,
-            head: vec![0; ny],
-            phase: vec![0.0; ny],
-            st: vec![BristleState::default(); n],
-            acc: vec![[0.0; N_KERNEL]; n],
-            node_st: vec![BristleState::default(); n],
-            node_acc: vec![[0.0; N_KERNEL]; n],
-            part: vec![Partial::default(); ny],
-            time: 0.0,
-            inputs: Inputs::default(),
+            state: GridState::new(nx, ny),
             patch,
             patch_fn: f64::NAN,
             flex: (0.0, 0.0, 0.0),
-            out: Outputs::default(),
-            initialized: false,
             warnings: Vec::new(),
             scheme: cfg.scheme,
             march_new: true,
             ho: false,
             start_cache: true,
-            reversed: false,
             np_cache: vec![Vec::new(); ny],
             np_cache_p0: vec![f64::NAN; ny],
             bound_cache: Vec::new(),
@@ -262,22 +230,22 @@ impl Contact {
 
     /// Simulated time, s.
     pub fn time(&self) -> f64 {
-        self.time
+        self.state.run.time
     }
 
     /// Last outputs.
     pub fn outputs(&self) -> Outputs {
-        mirror_outputs(self.out, self.reversed)
+        mirror_outputs(self.state.run.out, self.state.run.reversed)
     }
 
     /// Last inputs.
     pub fn inputs(&self) -> Inputs {
-        mirror_inputs(&self.inputs, self.reversed)
+        mirror_inputs(&self.state.run.inputs, self.state.run.reversed)
     }
 
     /// True while the contact rolls backwards (the last non-zero speed was negative).
     pub fn reversed(&self) -> bool {
-        self.reversed
+        self.state.run.reversed
     }
 
     /// The rolling direction for `inputs`: backwards for v < 0, forwards for v > 0, unchanged
@@ -288,7 +256,7 @@ impl Contact {
         } else if inputs.v > 0.0 {
             false
         } else {
-            self.reversed
+            self.state.run.reversed
         }
     }
 
@@ -299,11 +267,11 @@ impl Contact {
     fn mirror_grid(&mut self) {
         let nx = self.nx;
         for j in 0..self.ny {
-            let p = self.phase[j];
+            let p = self.state.phase[j];
             let old: Vec<(BristleState, [f64; N_KERNEL])> = (0..=nx)
                 .map(|slot| {
                     let id = self.idx(j, slot);
-                    (self.st[id], self.acc[id])
+                    (self.state.st[id], self.state.acc[id])
                 })
                 .collect();
             let base = j * (nx + 1);
@@ -315,21 +283,21 @@ impl Contact {
                     continue; // it had left at the old trailing edge: ahead of the new leading one
                 }
                 let new = if p > 0.0 { nx - 1 - slot } else { nx - slot };
-                self.st[base + new] = b;
-                self.acc[base + new] = a;
+                self.state.st[base + new] = b;
+                self.state.acc[base + new] = a;
             }
             if p > 0.0 {
                 // past the new trailing edge lies the unloaded material that was ahead of the
                 // old leading edge (the quadrature interpolates towards it)
-                self.st[base + nx] = BristleState {
-                    temp: self.inputs.t_bulk,
+                self.state.st[base + nx] = BristleState {
+                    temp: self.state.run.inputs.t_bulk,
                     ..BristleState::default()
                 };
-                self.acc[base + nx] = [0.0; N_KERNEL];
+                self.state.acc[base + nx] = [0.0; N_KERNEL];
             }
-            self.head[j] = 0;
+            self.state.head[j] = 0;
             if p > 0.0 {
-                self.phase[j] = 1.0 - p;
+                self.state.phase[j] = 1.0 - p;
             }
         }
         self.reset_nodes();
@@ -366,7 +334,7 @@ impl Contact {
             }
             self.patch_fn = inputs.fn_n;
         }
-        self.inputs = *inputs;
+        self.state.run.inputs = *inputs;
         self.update_modifiers()?;
         if self.r.temperature && inputs.v > V_STANDSTILL {
             let vw = inputs.v * (1.0 + inputs.cx).abs();
@@ -408,11 +376,11 @@ impl Contact {
         // on the state as the last steady state left it (before a reversal mirrors it)
         self.settle_mirrored();
         let rev = self.wants_reversed(inputs);
-        if rev != self.reversed {
-            if self.initialized {
+        if rev != self.state.run.reversed {
+            if self.state.run.initialized {
                 self.mirror_grid();
             }
-            self.reversed = rev;
+            self.state.run.reversed = rev;
         }
         let out = self.step_forward(dt, &mirror_inputs(inputs, rev))?;
         Ok(mirror_outputs(out, rev))
@@ -420,9 +388,9 @@ impl Contact {
 
     /// [`Self::step`] in the frame where the contact rolls forwards (v >= 0).
     fn step_forward(&mut self, dt: f64, inputs: &Inputs) -> Result<Outputs> {
-        if !self.r.transient || !self.initialized {
+        if !self.r.transient || !self.state.run.initialized {
             let out = self.steady_forward(inputs)?;
-            self.time += dt;
+            self.state.run.time += dt;
             return Ok(out);
         }
         self.set_inputs(inputs)?;
@@ -443,49 +411,49 @@ impl Contact {
         } else {
             self.each_strip(|c, sp| c.advance_cells(sp, dt));
         }
-        self.time += dt;
-        self.out = self.integrate();
-        Ok(self.out)
+        self.state.run.time += dt;
+        self.state.run.out = self.integrate();
+        Ok(self.state.run.out)
     }
 
     fn lift_off(&mut self) -> Outputs {
-        for s in self.st.iter_mut() {
+        for s in self.state.st.iter_mut() {
             *s = BristleState {
-                temp: self.inputs.t_bulk,
+                temp: self.state.run.inputs.t_bulk,
                 ..BristleState::default()
             };
         }
-        for a in self.acc.iter_mut() {
+        for a in self.state.acc.iter_mut() {
             *a = [0.0; N_KERNEL];
         }
         self.reset_nodes();
         // the bristles are reset, the strips' ring heads and phases are not: equal only
         // where they were (a state of an older strip rule may hold phases a bit apart)
         self.set_mirrored(self.strips_equal());
-        self.out = Outputs::unloaded(self.inputs.t_bulk);
-        self.out
+        self.state.run.out = Outputs::unloaded(self.state.run.inputs.t_bulk);
+        self.state.run.out
     }
 
     /// Sets the grid to the steady state of constant `inputs` and returns its outputs.
     /// Does not advance time.
     pub fn steady(&mut self, inputs: &Inputs) -> Result<Outputs> {
         inputs.validate()?;
-        self.reversed = self.wants_reversed(inputs);
-        let out = self.steady_forward(&mirror_inputs(inputs, self.reversed))?;
-        Ok(mirror_outputs(out, self.reversed))
+        self.state.run.reversed = self.wants_reversed(inputs);
+        let out = self.steady_forward(&mirror_inputs(inputs, self.state.run.reversed))?;
+        Ok(mirror_outputs(out, self.state.run.reversed))
     }
 
     /// [`Self::steady`] in the frame where the contact rolls forwards (v >= 0).
     fn steady_forward(&mut self, inputs: &Inputs) -> Result<Outputs> {
         self.set_inputs(inputs)?;
-        self.initialized = true;
+        self.state.run.initialized = true;
         if inputs.fn_n <= F_LIFT_OFF {
             return Ok(self.lift_off());
         }
         // the steady state is the grid a transient run reaches with constant inputs: every
         // bristle entered under these inputs, i.e. the march of newly entered bristles over
         // the whole strip at phase 0
-        self.out = if self.coulomb_path() {
+        self.state.run.out = if self.coulomb_path() {
             let out = self.steady_coulomb();
             // whether the strips are mirror images: found when a step needs it
             self.mirrored_unknown = true;
@@ -493,7 +461,7 @@ impl Contact {
         } else {
             self.steady_march()
         };
-        Ok(self.out)
+        Ok(self.state.run.out)
     }
 
     /// The steady march of every strip (the general path of [`Self::steady`]).
@@ -515,10 +483,27 @@ impl Contact {
     /// the current cell travelled since: their next move ends the current cell (after a
     /// change of direction, a lift-off and for states saved before the whole-cell commit).
     fn reset_nodes(&mut self) {
-        self.node_st.copy_from_slice(&self.st);
-        self.node_acc.copy_from_slice(&self.acc);
+        self.state.reset_nodes();
         self.node_acc_zero = false;
-        self.part.iter_mut().for_each(|p| *p = Partial::default());
+    }
+
+    /// The complete hidden state, for module [`crate::state`] to write. The grid, `inputs`
+    /// and `out` are those of the frame the contact rolls forwards in (mirrored x -> -x while
+    /// [`Contact::reversed`]).
+    pub(crate) fn grid_state(&self) -> &GridState {
+        &self.state
+    }
+
+    /// Restores a state read by module [`crate::state`] after [`GridState::check`].
+    pub(crate) fn restore(&mut self, g: GridState) -> Result<()> {
+        g.check((self.nx, self.ny))?;
+        self.state.run.time = g.run.time;
+        self.state.run.reversed = g.run.reversed;
+        self.set_inputs(&g.run.inputs)?;
+        self.state = g;
+        self.node_acc_zero = false;
+        self.set_mirrored(self.strips_equal());
+        Ok(())
     }
 
     /// Switches the march of newly entered bristles off (plain sub-step loop for every
@@ -663,7 +648,7 @@ mod tests {
                         ..Inputs::default()
                     };
                     let fast = c.steady(&i).expect("steady");
-                    let st_fast = c.st.clone();
+                    let st_fast = c.state.st.clone();
                     let slow = c.steady_march();
                     let close =
                         |x: f64, y: f64| (x - y).abs() <= 1e-12 * (1.0 + x.abs().max(y.abs()));
@@ -679,7 +664,7 @@ mod tests {
                     ] {
                         assert!(close(x, y), "{preset} {nx}x{ny} {i:?}: {name} {x} vs {y}");
                     }
-                    for (n, (p, q)) in st_fast.iter().zip(c.st.iter()).enumerate() {
+                    for (n, (p, q)) in st_fast.iter().zip(c.state.st.iter()).enumerate() {
                         assert_eq!(p.regime, q.regime, "{preset} {nx}x{ny} {i:?}: node {n}");
                         for (x, y) in [
                             (p.tau[0], q.tau[0]),

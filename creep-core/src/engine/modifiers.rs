@@ -167,7 +167,7 @@ impl Contact {
         if self.modifiers.is_empty() {
             return Ok(());
         }
-        let i = super::mirror_inputs(&self.inputs, self.reversed);
+        let i = super::mirror_inputs(&self.state.run.inputs, self.state.run.reversed);
         self.modifiers.at([i.v, i.fn_n / 1e3, i.cx, i.cy, i.spin])
     }
 

@@ -113,7 +113,7 @@ impl Contact {
     /// the latency of each strip's sqrt/division chain is hidden behind the others'.
     /// The states stored are those of the general march (to rounding).
     pub(super) fn steady_coulomb(&mut self) -> super::Outputs {
-        if self.inputs.cy == 0.0 && self.inputs.spin == 0.0 {
+        if self.state.run.inputs.cy == 0.0 && self.state.run.inputs.spin == 0.0 {
             self.steady_coulomb_lanes::<false>()
         } else {
             self.steady_coulomb_lanes::<true>()
@@ -127,8 +127,8 @@ impl Contact {
     fn steady_coulomb_lanes<const LAT: bool>(&mut self) -> super::Outputs {
         let nx = self.nx;
         for j in 0..self.ny {
-            self.head[j] = 0;
-            self.phase[j] = 0.0;
+            self.state.head[j] = 0;
+            self.state.phase[j] = 0.0;
         }
         let bounds = self.bound_lanes();
         let mut tot = Totals::default();
@@ -138,8 +138,8 @@ impl Contact {
             ..BristleState::default()
         };
         let mut scratch = vec![init; (LANES - 1) * (nx + 1)];
-        let mut st = std::mem::take(&mut self.st);
-        let mut node_st = std::mem::take(&mut self.node_st);
+        let mut st = std::mem::take(&mut self.state.st);
+        let mut node_st = std::mem::take(&mut self.state.node_st);
         for (g, ((strips, nodes), bnd)) in st
             .chunks_mut(LANES * (nx + 1))
             .zip(node_st.chunks_mut(LANES * (nx + 1)))
@@ -169,17 +169,17 @@ impl Contact {
                 n.copy_from_slice(o);
             }
         }
-        self.st = st;
-        self.node_st = node_st;
+        self.state.st = st;
+        self.state.node_st = node_st;
         // ... with no heat history and no part of a cell travelled: a step after a steady
         // state in mid-run must not start from the parts and node states of the run before
         // it (the node accumulators are cleared only where a step, a reset of the nodes or a
         // restored state may have written them since they were last cleared)
         if !self.node_acc_zero {
-            self.node_acc.fill([0.0; crate::thermal::N_KERNEL]);
+            self.state.node_acc.fill([0.0; crate::thermal::N_KERNEL]);
             self.node_acc_zero = true;
         }
-        self.part.fill(super::Partial::default());
+        self.state.part.fill(super::Partial::default());
         self.bound_cache = bounds;
         self.coulomb_outputs(&tot)
     }
@@ -187,7 +187,7 @@ impl Contact {
     /// The march's shared constants from the step's inputs and the flexibilities.
     fn coulomb_march(&self) -> CoulombMarch {
         let kin0 = self.kin(0.0, 0.0);
-        let v = self.inputs.v;
+        let v = self.state.run.inputs.v;
         CoulombMarch {
             nx: self.nx,
             a: self.patch.a,
@@ -195,7 +195,7 @@ impl Contact {
             line: self.patch.line,
             v,
             heat: v > V_STANDSTILL,
-            t_bulk: self.inputs.t_bulk,
+            t_bulk: self.state.run.inputs.t_bulk,
             lx: kin0.lx,
             ly: kin0.ly,
             ilx: 1.0 / kin0.lx,
@@ -240,8 +240,8 @@ impl Contact {
     /// rise, no plastic regime).
     fn coulomb_outputs(&self, t: &Totals) -> super::Outputs {
         let (a, b) = (self.patch.a, self.patch.b);
-        let t_bulk = self.inputs.t_bulk;
-        let fn_n = self.inputs.fn_n;
+        let t_bulk = self.state.run.inputs.t_bulk;
+        let fn_n = self.state.run.inputs.fn_n;
         let area = t.area.max(f64::MIN_POSITIVE);
         super::Outputs {
             fx: t.fx,

@@ -59,19 +59,21 @@ impl Contact {
         self.settle_mirrored();
         // `f` may write the node accumulators
         self.node_acc_zero = false;
-        let sym =
-            self.strips_mirrored && self.ny > 1 && !self.patch.line && self.inputs.spin == 0.0;
+        let sym = self.strips_mirrored
+            && self.ny > 1
+            && !self.patch.line
+            && self.state.run.inputs.spin == 0.0;
         self.strips_mirrored = sym;
         let mirror = sym && self.mirror_strips;
         let computed = if mirror { self.ny.div_ceil(2) } else { self.ny };
         let nx1 = self.nx + 1;
-        let mut st = std::mem::take(&mut self.st);
-        let mut acc = std::mem::take(&mut self.acc);
-        let mut node_st = std::mem::take(&mut self.node_st);
-        let mut node_acc = std::mem::take(&mut self.node_acc);
-        let mut part = std::mem::take(&mut self.part);
-        let mut head = std::mem::take(&mut self.head);
-        let mut phase = std::mem::take(&mut self.phase);
+        let mut st = std::mem::take(&mut self.state.st);
+        let mut acc = std::mem::take(&mut self.state.acc);
+        let mut node_st = std::mem::take(&mut self.state.node_st);
+        let mut node_acc = std::mem::take(&mut self.state.node_acc);
+        let mut part = std::mem::take(&mut self.state.part);
+        let mut head = std::mem::take(&mut self.state.head);
+        let mut phase = std::mem::take(&mut self.state.phase);
         let mut nodes = std::mem::take(&mut self.np_cache);
         let mut nodes_p0 = std::mem::take(&mut self.np_cache_p0);
         let mut fac = std::mem::take(&mut self.fac_cache);
@@ -122,13 +124,13 @@ impl Contact {
                 _ => strips.iter_mut().for_each(|sp| f(this, sp)),
             }
         }
-        self.st = st;
-        self.acc = acc;
-        self.node_st = node_st;
-        self.node_acc = node_acc;
-        self.part = part;
-        self.head = head;
-        self.phase = phase;
+        self.state.st = st;
+        self.state.acc = acc;
+        self.state.node_st = node_st;
+        self.state.node_acc = node_acc;
+        self.state.part = part;
+        self.state.head = head;
+        self.state.phase = phase;
         self.np_cache = nodes;
         self.np_cache_p0 = nodes_p0;
         self.fac_cache = fac;
@@ -145,13 +147,13 @@ impl Contact {
         for j in 0..ny / 2 {
             let m = ny - 1 - j;
             let (src, dst) = (j * nx1, m * nx1);
-            self.st.copy_within(src..src + nx1, dst);
-            self.acc.copy_within(src..src + nx1, dst);
-            self.node_st.copy_within(src..src + nx1, dst);
-            self.node_acc.copy_within(src..src + nx1, dst);
-            self.part[m] = self.part[j];
-            self.head[m] = self.head[j];
-            self.phase[m] = self.phase[j];
+            self.state.st.copy_within(src..src + nx1, dst);
+            self.state.acc.copy_within(src..src + nx1, dst);
+            self.state.node_st.copy_within(src..src + nx1, dst);
+            self.state.node_acc.copy_within(src..src + nx1, dst);
+            self.state.part[m] = self.state.part[j];
+            self.state.head[m] = self.state.head[j];
+            self.state.phase[m] = self.state.phase[j];
         }
     }
 
@@ -187,13 +189,16 @@ impl Contact {
         (0..ny / 2).all(|j| {
             let m = ny - 1 - j;
             let (a, b) = (j * nx1..(j + 1) * nx1, m * nx1..(m + 1) * nx1);
-            self.head[j] == self.head[m]
-                && same(&[self.phase[j]], &[self.phase[m]])
-                && same(&part(&self.part[j]), &part(&self.part[m]))
-                && bristles(&self.st[a.clone()], &self.st[b.clone()])
-                && bristles(&self.node_st[a.clone()], &self.node_st[b.clone()])
-                && accs(&self.acc[a.clone()], &self.acc[b.clone()])
-                && accs(&self.node_acc[a], &self.node_acc[b])
+            self.state.head[j] == self.state.head[m]
+                && same(&[self.state.phase[j]], &[self.state.phase[m]])
+                && same(&part(&self.state.part[j]), &part(&self.state.part[m]))
+                && bristles(&self.state.st[a.clone()], &self.state.st[b.clone()])
+                && bristles(
+                    &self.state.node_st[a.clone()],
+                    &self.state.node_st[b.clone()],
+                )
+                && accs(&self.state.acc[a.clone()], &self.state.acc[b.clone()])
+                && accs(&self.state.node_acc[a], &self.state.node_acc[b])
         })
     }
 
@@ -243,7 +248,7 @@ impl Contact {
     /// about (cells travelled) x (bristles) moves per step.
     pub(super) fn advance_cells(&self, sp: &mut Strip, dt: f64) {
         let j = sp.j;
-        let v = self.inputs.v;
+        let v = self.state.run.inputs.v;
         let a = self.patch.a;
         let march = self.march_new;
         let dx = 2.0 * self.ell[j] * a / self.nx as f64;
@@ -347,7 +352,7 @@ impl Strip<'_> {
 impl Contact {
     /// Time to roll `d` (m) at the current speed, s (0 at standstill, the v -> 0 limit).
     pub(super) fn time_of(&self, d: f64) -> f64 {
-        let v = self.inputs.v;
+        let v = self.state.run.inputs.v;
         if v > super::V_STANDSTILL {
             d / v
         } else {
@@ -357,7 +362,7 @@ impl Contact {
 
     /// Adds `d` (m) rolled at the current inputs to the strip's part `p` of its current cell.
     pub(super) fn add_part(&self, p: &mut super::Partial, d: f64) {
-        let i = &self.inputs;
+        let i = &self.state.run.inputs;
         p.d += d;
         p.h += self.time_of(d);
         p.dcx += d * i.cx;
