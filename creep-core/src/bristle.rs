@@ -159,7 +159,7 @@ pub struct Move {
 }
 
 /// How tau_c2 and L_p vary along a move under the higher-order rules
-/// ([`crate::engine::Scheme::CellsHigher`], docs/model.md section 9, step 8): tau_c2 linear
+/// ([`crate::engine::Scheme::CellsHigher`], docs/model.md section 3.3): tau_c2 linear
 /// from the start material's to the end material's, 1/L_p from the start's to the end's
 /// with its pressure part exponential in s and its temperature part along the move's
 /// temperature profile. NaN fields: the end material over the whole move (Eq. 4.7 as the
@@ -564,7 +564,7 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
 /// turns from the direction at the crossing to `dir` in proportion to the plastic remainder
 /// 1 - lam of the move: at lam -> 1 (the trial just reaches tau_c1) it is the elastic trial's
 /// direction, so the stress is continuous across the elastic/plastic boundary in the inputs
-/// (issue 24: a 0.46 MPa jump of tau_x, 0.1 N of F_x, where a bristle ends a move just past
+/// (before it: a 0.46 MPa jump of tau_x, 0.1 N of F_x, where a bristle ends a move just past
 /// tau_c1); at lam = 0 it is `dir`, as before. Only the crossing move's end state changes (the
 /// next move starts from |tau| along u): one bristle per strip, O(1/nx) of the forces.
 #[inline]

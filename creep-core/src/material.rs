@@ -335,7 +335,7 @@ impl Resolved {
     ///   ((tau_c1 - t_Voce) / (tau_c1 X_c1), a fraction of a kelvin) and so with bounded
     ///   release heat, as long as the gain of the ride stays below 1; a bristle that may
     ///   ride takes [`Self::release_t_riding`]. With tau_c1's coefficient in X for every move
-    ///   (the rule before issue 24 step 7),
+    ///   (an earlier rule),
     ///   theta damped hardening and sliding bristles of dry (tau_c1 0.034 /K against tau_c2
     ///   0.0025 /K) and wet (0.55 against 0.0015 /K) by a weight that depends on the cell
     ///   length: the fine grids drifted (dry, 20 m/s, c_x 1.06 %: +1.8 % on 640 cells).
@@ -354,7 +354,7 @@ impl Resolved {
     /// tau_c1's coefficient counts too. Without it, on short moves (dry: cells shorter than
     /// about 25 um) the gain of the ride passed 1 and the solve's only root was the elastic
     /// one at t_hist: the bristle left tau_c1 for one cell and yielded again higher
-    /// (docs/model.md, section 6 and section 9 step 10).
+    /// (docs/model.md section 6).
     #[inline]
     pub(crate) fn release_t_riding(&self) -> f64 {
         self.release_t().max(self.tc1_t)

@@ -19,7 +19,7 @@ pub enum Scheme {
     /// (docs/model.md section 3).
     Continuous,
     /// [`Scheme::CellsMarch`] with the higher-order rules along each move (ECF's
-    /// same-characteristic law; docs/model.md section 9): tau_c2 linear and 1/L_p along the
+    /// same-characteristic law; docs/model.md section 3.3): tau_c2 linear and 1/L_p along the
     /// move's temperature profile from the start material's to the end material's, the
     /// newest interval of Eq. 4.35 with the heat rate linear over the move, the move from
     /// the leading edge in graded sub-moves, and the leading cell's sqrt(s) term in the
@@ -68,7 +68,7 @@ pub const SCHEMES: [SchemeRow; 3] = [
         name: "cells-ho",
         fmu_code: 2,
         steady: true,
-        help: "Cell by cell with higher-order rules along each move (docs/model.md section 9): \
+        help: "Cell by cell with higher-order rules along each move (docs/model.md section 3.3): \
                about twice the cost of cells on the same grid, more accurate at equal cost; \
                ECF's default",
     },

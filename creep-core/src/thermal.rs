@@ -248,7 +248,7 @@ pub fn peclet_ok(a: f64, v: f64, v_w: f64, kappa_w: f64, kappa_r: f64) -> bool {
 /// coefficient) that the local temperature solves resolve: 1e-10. The forces follow the
 /// temperature through these factors, so a solve that stops anywhere within its tolerance
 /// moves them by about this much relative: with 1e-10 a finite-difference derivative with a
-/// relative increment of 1e-6 is still right to about 1e-4 relative (issue 25). The earlier
+/// relative increment of 1e-6 is still right to about 1e-4 relative. The earlier
 /// 1e-4 made the outputs jump by 1e-6..1e-5 relative where an input moved by one ulp changed
 /// an iteration count; it cost about a fifth fewer instructions per transient step
 /// (docs/model.md, "Tolerance of the temperature solve").

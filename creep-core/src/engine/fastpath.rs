@@ -15,7 +15,7 @@ use crate::material::Resolved;
 /// A fast path of the bristle engine (see the module's text).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FastPath {
-    /// FASTSIM's march and steady state (`Contact::coulomb_path`, `march_coulomb` in
+    /// FASTSIM's march and steady state (`Law::coulomb_path`, `march_coulomb` in
     /// engine/advance.rs, `steady_coulomb` in engine/steady_coulomb.rs): Kalker's brush with the radial return
     /// onto the Coulomb bound mu p in one tight loop, no heat.
     Coulomb,

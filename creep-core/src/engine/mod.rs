@@ -15,15 +15,24 @@
 //! every node, which is exactly the grid the transient step reaches after 2a/v with constant
 //! inputs (tested bit for bit).
 //!
+//! The contact is four parts: the law (`law`: the resolved material law, heat kernel,
+//! modifiers, scheme and fast paths, built once and read-only while bristles move), the
+//! lattice (`law::Lattice`, the grid's geometry), the grid state (`grid_state`: exactly
+//! what is saved and restored, with its byte layout; module [`crate::state`] frames it) and
+//! per strip its scratch (`strip::StripScratch`), besides the Hertz patch of the current load
+//! and the thread pool. A bristle move is a method of `law::Mover` (law, lattice, the step's
+//! kinematics) on one strip's state (`strip::Strip`), nothing else.
+//!
 //! Where each job lives: this file holds the contact and the time loop (`step`, `steady`);
-//! `grid_state` the state that is saved and restored, with its byte layout (module
-//! [`crate::state`] frames it); [`io`] the inputs and outputs; `strip` one strip as a unit of
-//! work (its state borrowed out of the contact, the strips of a step on `threads` threads)
-//! and the cell-by-cell scheme; `advance` one bristle move, the sub-step loop and march;
-//! `grid` the integrals and fields; `modifiers` the formula and custom effects; `softening`
-//! the temperature solve of a layer that only softens as it heats (on the law's branch as a
-//! scalar function of T). The material law is [`crate::material`], the temperature solve and heat
-//! kernel [`crate::thermal`], the Hertz patch [`crate::hertz`].
+//! [`io`] the inputs and outputs; `strip` one strip as a unit of work (its state borrowed
+//! out of the contact, the strips of a step on `threads` threads) and the cell-by-cell
+//! scheme; `advance` one bristle move, the sub-step loop and march; `bristle_move` the
+//! general move's temperature solve; `kin` a sub-step's kinematics; `grid` the integrals and
+//! fields; `modifiers` the formula and custom effects; `softening` the temperature solve of
+//! a layer that only softens as it heats (on the law's branch as a scalar function of T);
+//! `steady_coulomb` FASTSIM's steady state in one pass. The material law is
+//! [`crate::material`], the temperature solve and heat kernel [`crate::thermal`], the Hertz
+//! patch [`crate::hertz`].
 
 mod advance;
 mod bristle_move;
@@ -32,6 +41,7 @@ mod grid;
 pub(crate) mod grid_state;
 pub mod io;
 mod kin;
+mod law;
 mod modifiers;
 mod softening;
 mod steady_coulomb;
@@ -48,9 +58,10 @@ use crate::config::{Config, Geometry, ModelKind};
 use crate::error::{check_range, CreepError, Result};
 use crate::hertz::Patch;
 use crate::kalker;
-use crate::material::Resolved;
-use crate::thermal::{self, Kernel, N_KERNEL};
+use crate::thermal::{self, N_KERNEL};
 use grid_state::GridState;
+use law::{Lattice, Law, Mover};
+use strip::StripScratch;
 
 /// Normal forces at or below this (N) are lift-off: the contact carries nothing. (The
 /// contact length shrinks like F_N^(1/3); a vanishing contact is not a tiny one.)
@@ -83,14 +94,10 @@ pub(crate) struct Partial {
 #[derive(Clone, Debug)]
 pub struct Contact {
     cfg: Config,
-    r: Resolved,
-    kernel: Kernel,
-    nx: usize,
-    ny: usize,
-    /// Normalized strip centres eta_j and half-lengths l_j, strip widths d eta_j.
-    eta: Vec<f64>,
-    ell: Vec<f64>,
-    deta: Vec<f64>,
+    /// The resolved material law, heat kernel, modifiers, scheme and fast paths.
+    law: Law,
+    /// The bristle grid's geometry.
+    lat: Lattice,
     /// What is saved and restored: time, last inputs and outputs, flags and the bristles.
     state: GridState,
     patch: Patch,
@@ -98,42 +105,14 @@ pub struct Contact {
     patch_fn: f64,
     flex: (f64, f64, f64),
     warnings: Vec<String>,
-    /// Temperature tolerance of the local solve, K ([`thermal::temperature_tolerance`] of the
-    /// largest temperature coefficient).
-    t_tol: f64,
-    /// Pressure parts of the lattice nodes per strip, for the peak pressure in `np_cache_p0`.
-    np_cache: Vec<Vec<crate::material::NodeP>>,
-    np_cache_p0: Vec<f64>,
+    /// Per strip, the caches its moves keep (module `strip`).
+    scratch: Vec<StripScratch>,
     /// Coulomb bounds of the lattice nodes, strips side by side (FASTSIM's steady march),
     /// for the peak pressure in `bound_cache_p0`.
     bound_cache: Vec<[f64; steady_coulomb::LANES]>,
     bound_cache_p0: f64,
-    /// Kernel factors of recent sub-step lengths (h, factors), per strip.
-    fac_cache: Vec<Vec<(f64, thermal::StepFactors)>>,
     /// Threads that advance the strips (None: the calling thread alone).
     pool: Option<std::sync::Arc<rayon::ThreadPool>>,
-    /// How a step advances the bristles (see [`Scheme`]).
-    scheme: Scheme,
-    /// The cell schemes march the bristles that enter during a step (off: the plain sub-step
-    /// loop for every bristle, the reference a test compares the march with).
-    march_new: bool,
-    /// The higher-order rules apply ([`Scheme::CellsHigher`] on an ECF layer under the
-    /// same-characteristic rule).
-    ho: bool,
-    /// The higher-order rules' start nodes from the lattice cache (or the previous edge
-    /// sub-move) where a move starts on a node; off: each computed where the move starts
-    /// (for a test that shows both agree).
-    start_cache: bool,
-    /// The configuration's formula and Rust effects at the current operating point.
-    modifiers: modifiers::Modifiers,
-    /// True if moves with heat flow take the scalar temperature solve of `softening`
-    /// ([`FastPath::Softening`]: a layer that only softens as it heats, the
-    /// same-characteristic rule, no modifier of the local bristle state).
-    softening_fast: bool,
-    /// The other fast paths this contact takes ([`FastPath::Coulomb`], [`FastPath::FixedLe`],
-    /// [`FastPath::Cold`];
-    /// module `fastpath` states what each supports).
-    fast: fastpath::Taken,
     /// Every strip's state equals its mirror image's about y = 0 (strip ny - 1 - j), bit for
     /// bit: then, while the inputs are symmetric too, one of each pair is computed and copied
     /// ([`Contact::each_strip`]).
@@ -161,17 +140,9 @@ impl Contact {
             });
         }
         cfg.grid.validate()?;
-        let (nx, ny) = (cfg.grid.nx, cfg.grid.ny);
+        let lat = Lattice::new(cfg);
+        let (nx, ny) = (lat.nx, lat.ny);
         let line = matches!(cfg.geometry, Geometry::Line { .. });
-        let ny = if line { 1 } else { ny };
-        // the strips at the Gauss-Legendre nodes in eta = y/b, each with its weight as its
-        // width (grid::strip_rule); a line contact has one strip of width 2
-        let (eta, deta): (Vec<f64>, Vec<f64>) = if line {
-            (vec![0.0], vec![2.0])
-        } else {
-            grid::strip_rule(ny).into_iter().unzip()
-        };
-        let ell = eta.iter().map(|e| (1.0 - e * e).sqrt()).collect();
         let patch = Patch {
             a: 1.0,
             b: 1.0,
@@ -180,46 +151,25 @@ impl Contact {
         };
         let mut c = Contact {
             cfg: cfg.clone(),
-            r: Resolved::from_config(cfg),
-            kernel: Kernel::default(),
-            nx,
-            ny,
-            eta,
-            ell,
-            deta,
+            law: Law::new(cfg),
+            lat,
             state: GridState::new(nx, ny),
             patch,
             patch_fn: f64::NAN,
             flex: (0.0, 0.0, 0.0),
             warnings: Vec::new(),
-            scheme: cfg.scheme,
-            march_new: true,
-            ho: false,
-            start_cache: true,
-            np_cache: vec![Vec::new(); ny],
-            np_cache_p0: vec![f64::NAN; ny],
+            scratch: vec![StripScratch::new(); ny],
             bound_cache: Vec::new(),
             bound_cache_p0: f64::NAN,
-            fac_cache: vec![Vec::new(); ny],
             pool: None,
-            modifiers: modifiers::Modifiers::new(&cfg.modifiers),
-            softening_fast: false,
-            fast: fastpath::Taken::default(),
             strips_mirrored: true,
             mirrored_unknown: false,
             node_acc_zero: true,
             mirror_strips: true,
-            t_tol: {
-                let r = Resolved::from_config(cfg);
-                let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
-                thermal::temperature_tolerance(cmax)
-            },
         };
         for path in FastPath::ALL {
             c.set_fast_path(path, true);
         }
-        // the configuration's scheme, with the higher-order rules where they apply
-        c.set_scheme(cfg.scheme);
         Ok(c)
     }
 
@@ -265,8 +215,8 @@ impl Contact {
     /// place (their slots reversed, the phase p -> 1 - p, u_x and tau_x negated; heat
     /// histories unchanged).
     fn mirror_grid(&mut self) {
-        let nx = self.nx;
-        for j in 0..self.ny {
+        let nx = self.lat.nx;
+        for j in 0..self.lat.ny {
             let p = self.state.phase[j];
             let old: Vec<(BristleState, [f64; N_KERNEL])> = (0..=nx)
                 .map(|slot| {
@@ -324,11 +274,11 @@ impl Contact {
             } else {
                 (a, b)
             };
-            let c = kalker::coefficients(ka, kb, self.r.nu)?;
-            self.flex = kalker::flexibilities(ka, kb, self.r.g, &c);
+            let c = kalker::coefficients(ka, kb, self.law.r.nu)?;
+            self.flex = kalker::flexibilities(ka, kb, self.law.r.g, &c);
             if self.patch.line {
                 // a 2-D strip: Carter's flexibility, not the elliptic one (kalker.rs)
-                let (lx, ly) = kalker::line_flexibilities(a, self.r.g, self.r.nu);
+                let (lx, ly) = kalker::line_flexibilities(a, self.law.r.g, self.law.r.nu);
                 self.flex.0 = lx;
                 self.flex.1 = ly;
             }
@@ -336,9 +286,15 @@ impl Contact {
         }
         self.state.run.inputs = *inputs;
         self.update_modifiers()?;
-        if self.r.temperature && inputs.v > V_STANDSTILL {
+        if self.law.r.temperature && inputs.v > V_STANDSTILL {
             let vw = inputs.v * (1.0 + inputs.cx).abs();
-            if !thermal::peclet_ok(self.patch.a, inputs.v, vw, self.r.kappa_w, self.r.kappa_r) {
+            if !thermal::peclet_ok(
+                self.patch.a,
+                inputs.v,
+                vw,
+                self.law.r.kappa_w,
+                self.law.r.kappa_r,
+            ) {
                 let msg = format!(
                     "Péclet condition a (v + v_w) > 20 (kappa_r + kappa_w) (Eq. 4.33) not met at v = {} m/s, a = {} mm: the flash temperature model neglects lateral heat conduction that matters here",
                     inputs.v,
@@ -348,7 +304,7 @@ impl Contact {
                     self.warnings.push(msg);
                 }
             }
-            if (1.0 + inputs.cx).abs() < 0.1 && !self.r.surface_time {
+            if (1.0 + inputs.cx).abs() < 0.1 && !self.law.r.surface_time {
                 let msg = format!(
                     "wheel surface speed v (1 + c_x) = {:.3} m/s is below 10 % of v (c_x = {}, wheel slide): the heat partition of Eq. 4.30 sends the heat into the rail and the seed's flash temperature (Eq. 4.34, evaluated in the layer's time) then underestimates the contact temperature by about sqrt(v_w/v), down to none for a locked wheel; the effect surface_time_flash evaluates it over the wheel surface's own time (docs/model.md section 11)",
                     inputs.v * (1.0 + inputs.cx).abs(),
@@ -388,7 +344,7 @@ impl Contact {
 
     /// [`Self::step`] in the frame where the contact rolls forwards (v >= 0).
     fn step_forward(&mut self, dt: f64, inputs: &Inputs) -> Result<Outputs> {
-        if !self.r.transient || !self.state.run.initialized {
+        if !self.law.r.transient || !self.state.run.initialized {
             let out = self.steady_forward(inputs)?;
             self.state.run.time += dt;
             return Ok(out);
@@ -400,13 +356,13 @@ impl Contact {
         if inputs.v <= V_STANDSTILL || dt == 0.0 {
             self.each_strip(|c, sp| {
                 let ph = *sp.phase;
-                c.substep_strip(sp, dt, 0.0, ph, 0, c.nx + 1)
+                c.substep_strip(sp, dt, 0.0, ph, 0, c.lat.nx + 1)
             });
         } else if inputs.v * dt >= 2.0 * self.patch.a {
             // every bristle enters during the step: the steady state of the step's inputs
             // (bounded work however long the step or small the contact)
             self.each_strip(|c, sp| c.march_all(sp, dt));
-        } else if self.scheme == Scheme::Continuous {
+        } else if self.law.scheme == Scheme::Continuous {
             self.each_strip(|c, sp| c.advance_continuous(sp, dt));
         } else {
             self.each_strip(|c, sp| c.advance_cells(sp, dt));
@@ -453,7 +409,7 @@ impl Contact {
         // the steady state is the grid a transient run reaches with constant inputs: every
         // bristle entered under these inputs, i.e. the march of newly entered bristles over
         // the whole strip at phase 0
-        self.state.run.out = if self.coulomb_path() {
+        self.state.run.out = if self.law.coulomb_path() {
             let out = self.steady_coulomb();
             // whether the strips are mirror images: found when a step needs it
             self.mirrored_unknown = true;
@@ -474,7 +430,7 @@ impl Contact {
             *sp.head = 0;
             *sp.phase = 0.0;
             *sp.part = Partial::default();
-            c.march_new(sp, c.nx + 1, 0.0)
+            c.march_new(sp, c.lat.nx + 1, 0.0)
         });
         self.integrate()
     }
@@ -487,6 +443,17 @@ impl Contact {
         self.node_acc_zero = false;
     }
 
+    /// What a move reads: the law, the lattice and the current step's kinematics.
+    fn mover(&self) -> Mover<'_> {
+        Mover {
+            law: &self.law,
+            lat: &self.lat,
+            patch: &self.patch,
+            flex: self.flex,
+            inputs: &self.state.run.inputs,
+        }
+    }
+
     /// The complete hidden state, for module [`crate::state`] to write. The grid, `inputs`
     /// and `out` are those of the frame the contact rolls forwards in (mirrored x -> -x while
     /// [`Contact::reversed`]).
@@ -496,7 +463,7 @@ impl Contact {
 
     /// Restores a state read by module [`crate::state`] after [`GridState::check`].
     pub(crate) fn restore(&mut self, g: GridState) -> Result<()> {
-        g.check((self.nx, self.ny))?;
+        g.check((self.lat.nx, self.lat.ny))?;
         self.state.run.time = g.run.time;
         self.state.run.reversed = g.run.reversed;
         self.set_inputs(&g.run.inputs)?;
@@ -510,14 +477,14 @@ impl Contact {
     /// bristle). For tests that show both give identical results.
     #[doc(hidden)]
     pub fn set_march_new_bristles(&mut self, on: bool) {
-        self.march_new = on;
+        self.law.march_new = on;
     }
 
     /// Switches the higher-order rules' cached start nodes off (each move's start node then
     /// computed where it starts). For a test that shows both give the same results.
     #[doc(hidden)]
     pub fn set_start_node_cache(&mut self, on: bool) {
-        self.start_cache = on;
+        self.law.start_cache = on;
     }
 
     /// Switches the scalar temperature solve of module `softening` off (every move then takes
@@ -535,15 +502,11 @@ impl Contact {
         let was = self.fast_path(path);
         let admits = path.support().admits(
             self.cfg.effects,
-            &self.r,
-            self.has_modifiers(),
-            self.modifiers.any_local(),
+            &self.law.r,
+            self.law.has_modifiers(),
+            self.law.modifiers.any_local(),
         );
-        let take = on && admits;
-        match path {
-            FastPath::Softening => self.softening_fast = take,
-            _ => self.fast.set(path, take),
-        }
+        self.law.fast.set(path, on && admits);
         was
     }
 
@@ -551,10 +514,9 @@ impl Contact {
     #[doc(hidden)]
     pub fn fast_path(&self, path: FastPath) -> bool {
         match path {
-            FastPath::Softening => self.softening_fast,
             // the higher-order rules split the leading cell, which FASTSIM's march does not
-            FastPath::Coulomb => self.fast.get(path) && !self.ho,
-            _ => self.fast.get(path),
+            FastPath::Coulomb => self.law.coulomb_path(),
+            _ => self.law.fast.get(path),
         }
     }
 
@@ -562,20 +524,17 @@ impl Contact {
     /// `scheme`, default [`Scheme::CellsMarch`]); the configuration keeps the scheme it was
     /// built with.
     pub fn set_scheme(&mut self, scheme: Scheme) {
-        self.scheme = scheme;
-        self.ho = scheme == Scheme::CellsHigher
-            && self.cfg.model == ModelKind::Ecf
-            && self.r.rule == crate::bristle::Rule::SameCharacteristic;
+        self.law.set_scheme(scheme, self.cfg.model);
     }
 
     /// How a step advances the bristles.
     pub fn scheme(&self) -> Scheme {
-        self.scheme
+        self.law.scheme
     }
 
     /// Grid size (nx, ny actually used; a line contact has one strip).
     pub fn grid_size(&self) -> (usize, usize) {
-        (self.nx, self.ny)
+        (self.lat.nx, self.lat.ny)
     }
 }
 
@@ -637,7 +596,7 @@ mod tests {
                 }
                 cfg.grid = Grid { nx, ny };
                 let mut c = Contact::new(&cfg).expect("contact");
-                assert!(c.coulomb_path());
+                assert!(c.law.coulomb_path());
                 for &(cx, cy, spin, v) in &cases {
                     let i = Inputs {
                         cx,

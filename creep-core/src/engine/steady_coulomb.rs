@@ -84,30 +84,30 @@ impl Contact {
     /// The Coulomb bounds mu p of the lattice nodes k = 0..=nx, [`LANES`] strips side by side
     /// (group g, node k at `g * (nx + 1) + k`), cached per peak pressure.
     fn bound_lanes(&mut self) -> Vec<[f64; LANES]> {
-        let nx = self.nx;
-        let groups = self.ny.div_ceil(LANES);
+        let nx = self.lat.nx;
+        let groups = self.lat.ny.div_ceil(LANES);
         let mut b = std::mem::take(&mut self.bound_cache);
         if self.bound_cache_p0 != self.patch.p0 || b.len() != groups * (nx + 1) {
             b.clear();
             b.resize(groups * (nx + 1), [0.0; LANES]);
-            for j in 0..self.ny {
-                let mut nodes = std::mem::take(&mut self.np_cache[j]);
-                let mut p0 = self.np_cache_p0[j];
-                self.lattice_nodes(j, &mut nodes, &mut p0);
-                self.np_cache_p0[j] = p0;
+            for j in 0..self.lat.ny {
+                let mut nodes = std::mem::take(&mut self.scratch[j].nodes);
+                let mut p0 = self.scratch[j].nodes_p0;
+                self.mover().lattice_nodes(j, &mut nodes, &mut p0);
+                self.scratch[j].nodes_p0 = p0;
                 let (g, l) = (j / LANES, j % LANES);
                 for (k, n) in nodes.iter().enumerate().skip(1) {
                     b[g * (nx + 1) + k][l] = n.bound;
                 }
-                self.np_cache[j] = nodes;
+                self.scratch[j].nodes = nodes;
             }
             self.bound_cache_p0 = self.patch.p0;
         }
         b
     }
 
-    /// The steady state of FASTSIM (see [`Self::coulomb_path`]): the march of
-    /// [`Self::march_coulomb`] for every strip at phase 0, [`LANES`] strips side by side, with
+    /// The steady state of FASTSIM (see [`Law::coulomb_path`](super::law::Law::coulomb_path)): the march of
+    /// [`Mover::march_coulomb`](super::law::Mover::march_coulomb) for every strip at phase 0, [`LANES`] strips side by side, with
     /// the integrals of [`Self::integrate`] (trapezoid over the nodes) summed in the same
     /// pass. Every strip has nx cells, so the strips of a group advance in lockstep and
     /// the latency of each strip's sqrt/division chain is hidden behind the others'.
@@ -125,8 +125,8 @@ impl Contact {
     /// same numbers, since sqrt(x^2) = |x| exactly).
     #[inline(never)]
     fn steady_coulomb_lanes<const LAT: bool>(&mut self) -> super::Outputs {
-        let nx = self.nx;
-        for j in 0..self.ny {
+        let nx = self.lat.nx;
+        for j in 0..self.lat.ny {
             self.state.head[j] = 0;
             self.state.phase[j] = 0.0;
         }
@@ -154,7 +154,7 @@ impl Contact {
                 .chain(scratch.chunks_exact_mut(nx + 1))
                 .take(LANES)
                 .collect();
-            debug_assert!(pad.is_empty() || g * LANES + lanes == self.ny);
+            debug_assert!(pad.is_empty() || g * LANES + lanes == self.lat.ny);
             for o in out.iter_mut() {
                 o[0] = init;
             }
@@ -186,10 +186,10 @@ impl Contact {
 
     /// The march's shared constants from the step's inputs and the flexibilities.
     fn coulomb_march(&self) -> CoulombMarch {
-        let kin0 = self.kin(0.0, 0.0);
+        let kin0 = self.mover().kin(0.0, 0.0);
         let v = self.state.run.inputs.v;
         CoulombMarch {
-            nx: self.nx,
+            nx: self.lat.nx,
             a: self.patch.a,
             b: self.patch.b,
             line: self.patch.line,
@@ -211,21 +211,28 @@ impl Contact {
     fn lane_group(&self, m: &CoulombMarch, g: usize) -> LaneGroup {
         let (nx, a, b, line) = (m.nx, m.a, m.b, m.line);
         let g0 = g * LANES;
-        let lanes = (self.ny - g0).min(LANES);
+        let lanes = (self.lat.ny - g0).min(LANES);
         // per-lane constants (padding lanes repeat the last strip into scratch)
         let jl = |l: usize| g0 + l.min(lanes - 1);
-        let d: [f64; LANES] = std::array::from_fn(|l| 2.0 * self.ell[jl(l)] * a / nx as f64);
-        let y: [f64; LANES] = std::array::from_fn(|l| if line { 0.0 } else { self.eta[jl(l)] * b });
+        let d: [f64; LANES] = std::array::from_fn(|l| 2.0 * self.lat.ell[jl(l)] * a / nx as f64);
+        let y: [f64; LANES] =
+            std::array::from_fn(|l| if line { 0.0 } else { self.lat.eta[jl(l)] * b });
         LaneGroup {
             lanes,
             d,
-            dxi: std::array::from_fn(|l| 2.0 * self.ell[jl(l)] / nx as f64),
-            ell: std::array::from_fn(|l| self.ell[jl(l)]),
+            dxi: std::array::from_fn(|l| 2.0 * self.lat.ell[jl(l)] / nx as f64),
+            ell: std::array::from_fn(|l| self.lat.ell[jl(l)]),
             y,
-            dy: std::array::from_fn(|l| if line { 2.0 * b } else { self.deta[jl(l)] * b }),
+            dy: std::array::from_fn(|l| {
+                if line {
+                    2.0 * b
+                } else {
+                    self.lat.deta[jl(l)] * b
+                }
+            }),
             inv_h: std::array::from_fn(|l| {
                 if m.heat {
-                    self.r.kq / (d[l] / m.v)
+                    self.law.r.kq / (d[l] / m.v)
                 } else {
                     0.0
                 }

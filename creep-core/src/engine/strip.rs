@@ -1,12 +1,37 @@
 //! One strip of the bristle grid as a unit of work: its bristles, ring buffer and caches borrowed out of the contact, so that strips advance independently (on several threads with `threads`).
 
+use super::law::Mover;
 use super::Contact;
 use crate::bristle::BristleState;
 use crate::material::NodeP;
 use crate::thermal::{StepFactors, N_KERNEL};
 use rayon::prelude::*;
 
-/// The mutable state of strip `j` during a step (the rest of the contact is read only).
+/// The caches of one strip's moves, kept from step to step (each strip owns its own, so
+/// strips share no mutable state).
+#[derive(Clone, Debug, Default)]
+pub(super) struct StripScratch {
+    /// Pressure parts of the lattice nodes, for the peak pressure `nodes_p0`.
+    pub nodes: Vec<NodeP>,
+    /// Peak pressure the cached `nodes` belong to, Pa (NaN: none yet).
+    pub nodes_p0: f64,
+    /// Kernel factors of recent sub-step lengths (h, factors).
+    pub fac: Vec<(f64, StepFactors)>,
+}
+
+impl StripScratch {
+    /// Empty caches.
+    pub fn new() -> Self {
+        StripScratch {
+            nodes: Vec::new(),
+            nodes_p0: f64::NAN,
+            fac: Vec::new(),
+        }
+    }
+}
+
+/// The mutable state of strip `j` during a step: its part of the grid state and its scratch
+/// (the law, lattice and kinematics reach its moves through a [`Mover`], read only).
 pub(super) struct Strip<'a> {
     /// Strip index.
     pub j: usize,
@@ -43,8 +68,9 @@ impl Strip<'_> {
 impl Contact {
     /// Runs `f` on every strip, on the contact's threads when it has them (results do not
     /// depend on the number of threads: strips share no mutable state). While `f` runs, the
-    /// contact's per-strip vectors (`st`, `acc`, `head`, `phase`, caches) are moved into the
-    /// strips: `f` reaches them through its [`Strip`] only, never through the contact.
+    /// grid state's per-strip vectors (`st`, `acc`, `head`, `phase`, ...) and the strips'
+    /// scratch are moved into the strips: `f` reaches them through its [`Strip`] only, and
+    /// the rest through the [`Mover`] (law, lattice, kinematics), read only.
     ///
     /// Symmetric strips are computed once: the strips lie symmetric about y = 0 (bit for bit,
     /// [`super::grid::strip_rule`]) and, without spin, nothing a move computes depends on the
@@ -55,18 +81,22 @@ impl Contact {
     /// (`strips_mirrored`) and the spin is 0, `f` runs on the strips j <= ny - 1 - j only
     /// and each is copied onto strip ny - 1 - j, with bit-identical results (test
     /// `mirrored_strips_are_bit_identical`).
-    pub(super) fn each_strip(&mut self, f: impl Fn(&Contact, &mut Strip) + Sync) {
+    pub(super) fn each_strip(&mut self, f: impl Fn(&Mover, &mut Strip) + Sync) {
         self.settle_mirrored();
         // `f` may write the node accumulators
         self.node_acc_zero = false;
         let sym = self.strips_mirrored
-            && self.ny > 1
+            && self.lat.ny > 1
             && !self.patch.line
             && self.state.run.inputs.spin == 0.0;
         self.strips_mirrored = sym;
         let mirror = sym && self.mirror_strips;
-        let computed = if mirror { self.ny.div_ceil(2) } else { self.ny };
-        let nx1 = self.nx + 1;
+        let computed = if mirror {
+            self.lat.ny.div_ceil(2)
+        } else {
+            self.lat.ny
+        };
+        let nx1 = self.lat.nx + 1;
         let mut st = std::mem::take(&mut self.state.st);
         let mut acc = std::mem::take(&mut self.state.acc);
         let mut node_st = std::mem::take(&mut self.state.node_st);
@@ -74,31 +104,19 @@ impl Contact {
         let mut part = std::mem::take(&mut self.state.part);
         let mut head = std::mem::take(&mut self.state.head);
         let mut phase = std::mem::take(&mut self.state.phase);
-        let mut nodes = std::mem::take(&mut self.np_cache);
-        let mut nodes_p0 = std::mem::take(&mut self.np_cache_p0);
-        let mut fac = std::mem::take(&mut self.fac_cache);
+        let mut scratch = std::mem::take(&mut self.scratch);
         {
-            let this = &*self;
+            let this = self.mover();
             let mut strips: Vec<Strip> = st
                 .chunks_mut(nx1)
                 .zip(acc.chunks_mut(nx1))
                 .zip(head.iter_mut().zip(phase.iter_mut()))
-                .zip(nodes.iter_mut().zip(nodes_p0.iter_mut()))
-                .zip(fac.iter_mut())
+                .zip(scratch.iter_mut())
                 .zip(node_st.chunks_mut(nx1).zip(node_acc.chunks_mut(nx1)))
                 .zip(part.iter_mut())
                 .enumerate()
                 .map(
-                    |(
-                        j,
-                        (
-                            (
-                                ((((st, acc), (head, phase)), (nodes, nodes_p0)), fac),
-                                (node_st, node_acc),
-                            ),
-                            part,
-                        ),
-                    )| Strip {
+                    |(j, (((((st, acc), (head, phase)), sc), (node_st, node_acc)), part))| Strip {
                         j,
                         st,
                         acc,
@@ -107,9 +125,9 @@ impl Contact {
                         part,
                         head,
                         phase,
-                        nodes,
-                        nodes_p0,
-                        fac,
+                        nodes: &mut sc.nodes,
+                        nodes_p0: &mut sc.nodes_p0,
+                        fac: &mut sc.fac,
                     },
                 )
                 .take(computed)
@@ -119,9 +137,9 @@ impl Contact {
                     strips
                         .par_iter_mut()
                         .with_max_len(1)
-                        .for_each(|sp| f(this, sp))
+                        .for_each(|sp| f(&this, sp))
                 }),
-                _ => strips.iter_mut().for_each(|sp| f(this, sp)),
+                _ => strips.iter_mut().for_each(|sp| f(&this, sp)),
             }
         }
         self.state.st = st;
@@ -131,9 +149,7 @@ impl Contact {
         self.state.part = part;
         self.state.head = head;
         self.state.phase = phase;
-        self.np_cache = nodes;
-        self.np_cache_p0 = nodes_p0;
-        self.fac_cache = fac;
+        self.scratch = scratch;
         if mirror {
             self.copy_to_mirror_strips();
         }
@@ -143,7 +159,7 @@ impl Contact {
     /// accumulators, node states, part of the cell, ring-buffer head and phase; the caches
     /// refill themselves).
     fn copy_to_mirror_strips(&mut self) {
-        let (ny, nx1) = (self.ny, self.nx + 1);
+        let (ny, nx1) = (self.lat.ny, self.lat.nx + 1);
         for j in 0..ny / 2 {
             let m = ny - 1 - j;
             let (src, dst) = (j * nx1, m * nx1);
@@ -175,7 +191,7 @@ impl Contact {
     /// [`Self::each_strip`]; 0 and -0 differ, so a state that holds both is computed strip by
     /// strip).
     pub(super) fn strips_equal(&self) -> bool {
-        let (ny, nx1) = (self.ny, self.nx + 1);
+        let (ny, nx1) = (self.lat.ny, self.lat.nx + 1);
         let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
         let bristle = |s: &BristleState| [s.u[0], s.u[1], s.tau[0], s.tau[1], s.sh, s.temp, s.q];
         let bristles = |a: &[BristleState], b: &[BristleState]| {
@@ -242,16 +258,78 @@ impl Contact {
     pub fn threads(&self) -> usize {
         self.pool.as_ref().map_or(1, |p| p.current_num_threads())
     }
+}
+
+impl Strip<'_> {
+    /// The bristles of `slots` are at their lattice nodes: their states become the node states.
+    fn keep_at_nodes(&mut self, slots: std::ops::Range<usize>) {
+        for slot in slots {
+            let id = self.slot(slot);
+            self.node_st[id] = self.st[id];
+            self.node_acc[id] = self.acc[id];
+        }
+    }
+
+    /// The bristles of `slots` go back to their node states (the provisional part of the
+    /// current cell is dropped, to be moved again from the node).
+    fn back_to_nodes(&mut self, slots: std::ops::Range<usize>) {
+        for slot in slots {
+            let id = self.slot(slot);
+            self.st[id] = self.node_st[id];
+            self.acc[id] = self.node_acc[id];
+        }
+    }
+}
+
+impl Mover<'_> {
+    /// Time to roll `d` (m) at the current speed, s (0 at standstill, the v -> 0 limit).
+    pub(super) fn time_of(&self, d: f64) -> f64 {
+        let v = self.inputs.v;
+        if v > super::V_STANDSTILL {
+            d / v
+        } else {
+            0.0
+        }
+    }
+
+    /// Adds `d` (m) rolled at the current inputs to the strip's part `p` of its current cell.
+    pub(super) fn add_part(&self, p: &mut super::Partial, d: f64) {
+        let i = &self.inputs;
+        p.d += d;
+        p.h += self.time_of(d);
+        p.dcx += d * i.cx;
+        p.dcy += d * i.cy;
+        p.dcs += d * i.spin;
+    }
+
+    /// Kinematics of a move over the strip's part `p` of the current cell plus `d` (m) more
+    /// at the current inputs: the creepages weighted by distance (the rigid slip and the
+    /// elastic increment of Eq. 4.21 are linear in them), the time summed.
+    pub(super) fn part_kin(&self, p: &super::Partial, d: f64) -> super::kin::Kin {
+        if p.d == 0.0 {
+            // nothing of the cell travelled before: the current inputs as they are
+            return self.kin(self.time_of(d), d);
+        }
+        let mut q = *p;
+        self.add_part(&mut q, d);
+        let mut k = self.kin(q.h, q.d);
+        if q.d > 0.0 {
+            k.cx = q.dcx / q.d;
+            k.cy = q.dcy / q.d;
+            k.cs = q.dcs / q.d;
+        }
+        k
+    }
 
     /// The reference scheme for strip `sp`: every bristle gets one sub-step per cell crossing,
     /// cut at the instants a new bristle enters (the steady march's sub-steps exactly). Costs
     /// about (cells travelled) x (bristles) moves per step.
     pub(super) fn advance_cells(&self, sp: &mut Strip, dt: f64) {
         let j = sp.j;
-        let v = self.state.run.inputs.v;
+        let v = self.inputs.v;
         let a = self.patch.a;
-        let march = self.march_new;
-        let dx = 2.0 * self.ell[j] * a / self.nx as f64;
+        let march = self.law.march_new;
+        let dx = 2.0 * self.lat.ell[j] * a / self.lat.nx as f64;
         let mut remaining = v * dt;
         let tol = 1e-9 * dx;
         // Bristles that enter during this step see only this step's (constant) inputs:
@@ -283,15 +361,15 @@ impl Contact {
                 // end positions are one node further (phase 1), then the slots shift. A cell
                 // begun in an earlier step is moved whole from the bristles' node states with
                 // the distance-weighted inputs of its parts (whole-cell commit: no cell is cut)
-                if !march || n_new + (wraps - n_new) <= self.nx {
+                if !march || n_new + (wraps - n_new) <= self.lat.nx {
                     // (within this guard: with more entries than cells, end would underflow)
                     let (skip, end) = if !march {
-                        (0, self.nx + 1)
+                        (0, self.lat.nx + 1)
                     } else {
-                        (n_new, self.nx + 1 - (wraps - n_new))
+                        (n_new, self.lat.nx + 1 - (wraps - n_new))
                     };
                     let kin = if *sp.phase > 0.0 {
-                        sp.back_to_nodes(skip..self.nx.min(end));
+                        sp.back_to_nodes(skip..self.lat.nx.min(end));
                         self.part_kin(sp.part, to_next)
                     } else {
                         self.kin(to_next / v, to_next)
@@ -305,16 +383,16 @@ impl Contact {
             } else {
                 let ph = *sp.phase + remaining / dx;
                 let skip = if !march { 0 } else { n_new };
-                if !march || n_new <= self.nx {
+                if !march || n_new <= self.lat.nx {
                     // the bristles at the step's phase, from their node states over the whole
                     // part of the cell travelled since (for the outputs; not committed)
                     if *sp.phase == 0.0 {
-                        sp.keep_at_nodes(skip..self.nx);
+                        sp.keep_at_nodes(skip..self.lat.nx);
                     } else {
-                        sp.back_to_nodes(skip..self.nx);
+                        sp.back_to_nodes(skip..self.lat.nx);
                     }
                     let kin = self.part_kin(sp.part, remaining);
-                    self.substep_strip_kin(sp, &kin, ph, skip, self.nx + 1);
+                    self.substep_strip_kin(sp, &kin, ph, skip, self.lat.nx + 1);
                 }
                 self.add_part(sp.part, remaining);
                 *sp.phase = ph;
@@ -323,69 +401,7 @@ impl Contact {
             }
         }
         if n_new > 0 && march {
-            self.march_new(sp, n_new.min(self.nx + 1), d_end);
+            self.march_new(sp, n_new.min(self.lat.nx + 1), d_end);
         }
-    }
-}
-
-impl Strip<'_> {
-    /// The bristles of `slots` are at their lattice nodes: their states become the node states.
-    fn keep_at_nodes(&mut self, slots: std::ops::Range<usize>) {
-        for slot in slots {
-            let id = self.slot(slot);
-            self.node_st[id] = self.st[id];
-            self.node_acc[id] = self.acc[id];
-        }
-    }
-
-    /// The bristles of `slots` go back to their node states (the provisional part of the
-    /// current cell is dropped, to be moved again from the node).
-    fn back_to_nodes(&mut self, slots: std::ops::Range<usize>) {
-        for slot in slots {
-            let id = self.slot(slot);
-            self.st[id] = self.node_st[id];
-            self.acc[id] = self.node_acc[id];
-        }
-    }
-}
-
-impl Contact {
-    /// Time to roll `d` (m) at the current speed, s (0 at standstill, the v -> 0 limit).
-    pub(super) fn time_of(&self, d: f64) -> f64 {
-        let v = self.state.run.inputs.v;
-        if v > super::V_STANDSTILL {
-            d / v
-        } else {
-            0.0
-        }
-    }
-
-    /// Adds `d` (m) rolled at the current inputs to the strip's part `p` of its current cell.
-    pub(super) fn add_part(&self, p: &mut super::Partial, d: f64) {
-        let i = &self.state.run.inputs;
-        p.d += d;
-        p.h += self.time_of(d);
-        p.dcx += d * i.cx;
-        p.dcy += d * i.cy;
-        p.dcs += d * i.spin;
-    }
-
-    /// Kinematics of a move over the strip's part `p` of the current cell plus `d` (m) more
-    /// at the current inputs: the creepages weighted by distance (the rigid slip and the
-    /// elastic increment of Eq. 4.21 are linear in them), the time summed.
-    pub(super) fn part_kin(&self, p: &super::Partial, d: f64) -> super::kin::Kin {
-        if p.d == 0.0 {
-            // nothing of the cell travelled before: the current inputs as they are
-            return self.kin(self.time_of(d), d);
-        }
-        let mut q = *p;
-        self.add_part(&mut q, d);
-        let mut k = self.kin(q.h, q.d);
-        if q.d > 0.0 {
-            k.cx = q.dcx / q.d;
-            k.cy = q.dcy / q.d;
-            k.cs = q.dcs / q.d;
-        }
-        k
     }
 }
