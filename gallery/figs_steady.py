@@ -165,7 +165,7 @@ def fig4_9_checks(n, S):
     return [
         # The rise at 0.1 % sits at the trailing-edge node and is not converged on the
         # gallery's grid (table4.1, 20 m/s: 31.4 degC on 80 cells, 35.5 degC on 1280; with
-        # the equal strips before issue 24's step 6, 25.8 and 34.3 degC). An absolute bound
+        # equal strips at their midpoints, 25.8 and 34.3 degC). An absolute bound
         # of 10 K held only through that under-resolution; "very low" is judged against the
         # rise at 30 % creepage instead.
         Check("4.9-low-temperature-at-0.1pct",

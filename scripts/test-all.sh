@@ -13,6 +13,8 @@ phase() {
 }
 echo "== setup (scripts/setup.sh --tests)" >&2
 bash scripts/setup.sh --tests
+phase "commit subjects (scripts/check-commits.sh: at most 72 characters)"
+bash scripts/check-commits.sh
 phase "cargo fmt --check"
 cargo fmt --all --check
 phase "cargo clippy -D warnings"

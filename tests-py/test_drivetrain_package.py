@@ -1,5 +1,5 @@
 """Package, public API, provenance of results, option errors, condition-matched FASTSIM, baselines and
-the `regress` command (issue 13). Short runs (t_end 0.8 s, small grids) to keep CI fast."""
+the `regress` command (docs/drivetrain.md). Short runs (t_end 0.8 s, small grids) to keep CI fast."""
 
 import hashlib
 import json

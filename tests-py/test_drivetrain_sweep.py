@@ -1,4 +1,4 @@
-"""Sweeps on Dask (issue 13): the same tiny sweep serially, on a LocalCluster and on a real
+"""Sweeps on Dask (docs/drivetrain.md): the same tiny sweep serially, on a LocalCluster and on a real
 `dask scheduler` with two `dask worker` processes started here on localhost; the three tables
 must be equal (timing columns aside), failures recorded, resume skips finished cases.
 

@@ -1,4 +1,4 @@
-"""FMU states across instances through fmpy: simulate_fmu(fmu_state=...) continues a serialized state in a fresh instance (issue 25)."""
+"""FMU states across instances through fmpy: simulate_fmu(fmu_state=...) continues a serialized state in a fresh instance (docs/fmu.md, "FMU state")."""
 
 from fmpy import extract, read_model_description, simulate_fmu
 from fmpy.fmi2 import FMU2Slave

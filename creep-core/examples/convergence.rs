@@ -2,8 +2,7 @@
 //!
 //! `cargo run --release -p creep-core --example convergence` — for every preset, v = 5, 20
 //! and 30 m/s, c_x = 0.2 % ... 30 %: f on the default grid with the model's default scheme,
-//! on the default grid with the first-order cell-by-cell scheme (`cells`, the default before
-//! issue 24's step 9), and on the 4x (320x84) and 8x (640x168) refined grids with the default
+//! on the default grid with the first-order cell-by-cell scheme (`cells`), and on the 4x (320x84) and 8x (640x168) refined grids with the default
 //! scheme; the differences are in % of the 640x168 value, and "ref gap" (320x84 against
 //! 640x168) bounds how far the reference itself is from the limit.
 use creep_core::{

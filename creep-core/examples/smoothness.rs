@@ -3,7 +3,8 @@
 //! Usage: `cargo run --release -p creep-core --example smoothness [preset] [steps] [--once]`
 //! (`--once`: one trajectory only, for `valgrind --tool=callgrind`)
 //! (defaults: dry, 47 steps of 1 ms from the steady state at v = 10 m/s, c_x = -0.5 %,
-//! F_N = 110 kN, c_y and spin 0 unless ECF_CY, ECF_SPIN say otherwise; the case of issue 25).
+//! F_N = 110 kN, c_y and spin 0 unless ECF_CY, ECF_SPIN say otherwise; docs/model.md section 6,
+//! "Tolerance of the temperature solve").
 //! Derivatives are central differences; increments are relative to the input's value (to
 //! 0.005 for c_x, c_y, 0.5 1/m for spin where the value is 0).
 use creep_core::{Config, Inputs, Model, Outputs};

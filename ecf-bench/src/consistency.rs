@@ -8,7 +8,7 @@
 //! steps of 0.01, 0.1 and 1 ms, over three contact-transit times 2a/v (at least three steps).
 //! Each cell: the friction coefficient's largest and final relative change, in %. The
 //! measure needs no reference solution: a change is an inconsistency between how the steady
-//! march and the transient steps cut a bristle's path (docs/model.md, section 9, step 3).
+//! march and the transient steps cut a bristle's path (docs/model.md section 3.2, "Whole-cell commit").
 use crate::accuracy::{config, A};
 use creep_core::{Contact, Inputs};
 

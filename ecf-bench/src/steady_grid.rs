@@ -1,16 +1,15 @@
 //! Grid convergence of the steady creep curves: each grid's largest error of f over c_x = 0.2 % ... 30 % against a 640x168 grid, per preset and speed.
 //!
-//! Issue 24 asks for the default steady grid within 1 % of the converged limit for every
-//! preset at 5-30 m/s and c_x from 0.2 % to 30 %. This prints, for presets dry, table4.1 and
+//! The default steady grid should be within 1 % of the converged limit for every preset at
+//! 5-30 m/s and c_x from 0.2 % to 30 % (docs/model.md section 9.1). This prints, for presets dry, table4.1 and
 //! wet at 5, 10, 20 and 30 m/s (F_N = 110 kN, a = 7.63 mm, b = 7.88 mm, T_bulk = 20 degC),
 //! the largest |f / f_640x168 - 1| in % over 16 creepages spaced logarithmically from 0.2 % to
 //! 30 %, on 20x5, 40x11, 80x21 (the default), 160x42 and 320x84, and the creepage where
 //! 80x21's error is largest; then the same for coarse grids under the higher-order rules
 //! (`cells-ho`) against the same `cells` reference. The reference is the finest grid, not an extrapolated limit: where
 //! 160x42 and 320x84 are further from it than 80x21, the reference itself has not converged
-//! (before issue 24 step 10, dry's cells shorter than about 27 um, 640 cells and more,
-//! carried the yield-surface chatter of docs/model.md section 6; before step 7 also the
-//! release weight's drift).
+//! (docs/model.md section 6, "Riding bristles": without that rule, dry's cells shorter than
+//! about 27 um carried a yield-surface chatter).
 use crate::accuracy::{config, FN};
 use creep_core::engine::Scheme;
 use creep_core::{Contact, Inputs};
@@ -107,8 +106,8 @@ pub fn table(quick: bool) {
             refs.push(f_ref);
         }
     }
-    // the same reference, coarse grids under the higher-order rules (issue 24 step 10: a
-    // smaller default grid for steady curves, fits and `ecf diagnose` would take these)
+    // the same reference, coarse grids under the higher-order rules (the grids `ecf diagnose`
+    // may run instead of a costlier configuration grid, ecf-measure's LOOP_GRIDS)
     println!(
         "== the same with the higher-order rules (cells-ho) on coarse grids, against the cells reference {}x{}, %",
         reference.0, reference.1

@@ -842,7 +842,7 @@ fn report_fit(
         write_json(w, &v)?;
         return Ok(());
     }
-    // several starts: the first ended stuck at a bound or worse than it started (issue 26)
+    // several starts: the first ended stuck at a bound or worse than it started (docs/measurements.md, "Fits that never end worse than they started")
     let starts = if r.starts > 1 {
         format!(" from {} starts", r.starts)
     } else {

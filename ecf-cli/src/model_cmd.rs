@@ -46,7 +46,7 @@ impl TransientArgs {
 #[derive(Args, Clone)]
 pub(crate) struct SteadyArgs {
     /// How the steady march integrates a move: cells or cells-ho (higher-order rules along
-    /// each move; docs/model.md sections 3 and 9). Default: the scheme --tol chooses among
+    /// each move; docs/model.md section 3.3). Default: the scheme --tol chooses among
     /// these two, else the configuration's (cells-ho for ECF, cells for FASTSIM, unless
     /// --config names another)
     #[arg(long, value_parser = scheme_parser(true))]

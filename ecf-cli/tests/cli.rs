@@ -612,7 +612,7 @@ impl Drop for TempFile {
     }
 }
 
-/// Inputs that gave NaN or inf with exit status 0 (issue 25) now fail, naming what is wrong,
+/// Inputs that could give NaN or inf with exit status 0 fail, naming what is wrong,
 /// and print no table.
 #[test]
 fn inputs_that_gave_nan_or_inf_are_errors() {

@@ -1,5 +1,5 @@
 //! `ecf compare/fit/diagnose` on users' own files: units in headers, delimiters, missing
-//! quantities, failed fits, bounds, nothing to try (issue 12).
+//! quantities, failed fits, bounds, nothing to try (docs/measurements.md).
 mod common;
 use common::ecf;
 use std::process::Command;

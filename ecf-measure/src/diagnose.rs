@@ -25,7 +25,7 @@ use crate::measure::Dataset;
 pub use crate::residuals::{correlations, Correlation};
 use crate::stats::cv_rmse_pct;
 use creep_core::config::{Config, ModelKind};
-use creep_core::effects::{self, Effect};
+use creep_core::effects::{self, Effect, EffectInfo};
 use creep_core::error::Result;
 use creep_core::params::P;
 use creep_core::Modifier;
@@ -36,9 +36,10 @@ pub const AT_NOISE: f64 = 1.5;
 
 /// The search of formula forms runs when the best model's held-out CV(RMSE) is above this
 /// many times the noise level (or the noise cannot be estimated): below [`AT_NOISE`] too, so
-/// that a weak effect is looked for; a proposal must still earn itself (module
-/// [`crate::search`]).
-pub const SEARCH_ABOVE: f64 = 1.2;
+/// that a weak effect is looked for, and at the estimate itself, since the estimate of a
+/// 150-row file scatters by about 10 % around the true noise; a proposal must still earn
+/// itself (module [`crate::search`]).
+pub const SEARCH_ABOVE: f64 = 1.0;
 
 /// |r| from which an extra column counts as showing strong residual structure.
 pub const STRONG: f64 = 0.3;
@@ -104,35 +105,6 @@ pub struct Diagnosis {
     /// Where the diagnosis ran the model on another grid than the configuration's, which and
     /// why ([`loop_config`]); `None`: on the configuration's.
     pub model_grid: Option<String>,
-}
-
-/// Parameters an effect brings when it is added.
-fn effect_params(e: Effect) -> Vec<P> {
-    match e {
-        Effect::Temperature => vec![P::Tc1T, P::Tc2T],
-        Effect::PressureDependence => vec![P::Tc1P, P::Tc2P],
-        Effect::LayerElasticity => vec![P::Le0],
-        Effect::VocePlasticity => vec![P::Tc10, P::Tc20, P::Lp0],
-        _ => vec![],
-    }
-}
-
-/// Variables whose residual correlation is evidence for an effect.
-fn signature(e: Effect) -> &'static [&'static str] {
-    match e {
-        Effect::Temperature => &[
-            "frictional_power_W",
-            "slip_velocity_mps",
-            "v_mps",
-            "model_T_max_C",
-        ],
-        Effect::PressureDependence => &["fn_kN", "p0_MPa"],
-        Effect::LayerElasticity => &["cx"],
-        Effect::VocePlasticity => &["cx"],
-        Effect::Transient | Effect::ElasticUnloading => &["dcx_dt_per_s"],
-        Effect::SurfaceTimeFlash => &["cx", "model_T_max_C"],
-        Effect::Coulomb => &["cx"],
-    }
 }
 
 /// The first sentence of a description (a ". " after "Eq", "Sec" or "Fig" does not end it).
@@ -373,41 +345,25 @@ impl Baseline<'_> {
             return Ok((candidates, false));
         }
         let has_series = data.rows.iter().any(|r| r.t.is_some());
-        // the wheel-slide effect differs from the seed's form by sqrt(v / v_w) only: it is a
-        // candidate where rows slide (|1 + c_x| < 0.5) with temperature on
-        let slide =
-            cfg.has(Effect::Temperature) && data.rows.iter().any(|r| (1.0 + r.cx).abs() < 0.5);
-        // effects that cannot act on these data are not counted as off: the wheel-slide
-        // effect without sliding rows, the transient-only effects on steady rows
-        let all_on = effects::CATALOGUE.iter().all(|i| {
-            i.effect == Effect::Coulomb
-                || cfg.has(i.effect)
-                || (i.effect == Effect::SurfaceTimeFlash && !slide)
-                || (matches!(i.effect, Effect::Transient | Effect::ElasticUnloading) && !has_series)
-        });
+        let sliding = data.rows.iter().any(|r| (1.0 + r.cx).abs() < 0.5);
+        // where an effect applies is its catalogue row's (`applies`); one that cannot act on
+        // these data is neither tried nor counted as off
+        let applies = |i: &EffectInfo| i.applies.holds(cfg.effects, has_series, sliding);
+        let all_on = effects::CATALOGUE
+            .iter()
+            .all(|i| cfg.has(i.effect) || !applies(i));
         for info in effects::CATALOGUE {
             let e = info.effect;
-            if cfg.has(e) || e == Effect::Coulomb {
-                continue;
-            }
-            if matches!(e, Effect::Transient | Effect::ElasticUnloading) && !has_series {
-                continue; // no time series: these effects cannot show in steady data
-            }
-            if e == Effect::SurfaceTimeFlash && !slide {
+            if cfg.has(e) || !applies(info) {
                 continue;
             }
             let mut c = cfg.clone();
             c.effects.insert(e);
-            let mut more = effect_params(e);
-            if e == Effect::Temperature {
-                // the temperature set of default_free now applies
-                more.extend(default_free(&c));
-            }
-            let free = self.free_with(more);
+            let free = self.free_with(info.fit.iter().copied());
             let evidence = self
                 .corr
                 .iter()
-                .filter(|k| signature(e).contains(&k.variable.as_str()))
+                .filter(|k| info.signature.contains(&k.variable.as_str()))
                 .max_by(|a, b| a.r.abs().total_cmp(&b.r.abs()))
                 .map(|k| format!("residual correlation with {} r = {:+.2}", k.variable, k.r))
                 .unwrap_or_else(|| "no signature variable in the data".into());
@@ -575,10 +531,17 @@ fn run(
             &opts,
             best_heldout,
             base_heldout,
+            noise.as_ref().map(|n| n.cv_rmse_pct),
             search_seconds,
             progress,
         )?;
-        verdict += &search_words(&s, noise.as_ref(), best_heldout, search_seconds);
+        verdict += &search_words(
+            &s,
+            noise.as_ref(),
+            best_heldout,
+            base_heldout,
+            search_seconds,
+        );
         Some(s)
     } else {
         None
@@ -686,6 +649,7 @@ fn search_words(
     s: &crate::search::Search,
     noise: Option<&crate::noise::Noise>,
     best_heldout: f64,
+    base_heldout: f64,
     search_seconds: f64,
 ) -> String {
     let c = &s.cost;
@@ -744,13 +708,21 @@ fn search_words(
             )
         }
         (None, Some(f)) => format!(
-            " No form is proposed: the best ({} x {} in {}, held-out {:.2} % against {best_heldout:.2} %) does not lower the configuration's held-out error by {:.0} % with per-row evidence of {} standard errors. {}",
+            " No form is proposed: the best ({} x {} in {}, held-out {:.2} % against {best_heldout:.2} %) does not lower the configuration's held-out error ({base_heldout:.2} %) to {:.2} % or below ({}) with per-row evidence of {} standard errors (it has {:.1}). {}",
             f.target,
             f.shape,
             f.variable,
             f.heldout_cv_rmse_pct,
-            CLAIM_FRACTION * 100.0,
+            crate::search::proposal_bound(base_heldout, noise.map(|n| n.cv_rmse_pct)),
+            match noise {
+                Some(_) => format!(
+                    "{:.0} % of the noise level below it",
+                    crate::search::GAIN_OF_NOISE * 100.0
+                ),
+                None => format!("{:.0} % below it", CLAIM_FRACTION * 100.0),
+            },
             crate::search::EVIDENCE,
+            f.evidence_z,
             match times(best_heldout) {
                 Some(t) if t > AT_NOISE => "What is missing is then not a factor of one variable on one material function: try two variables together (a formula effect of your own), or an effect on another quantity.",
                 _ => "",

@@ -59,3 +59,69 @@ pub fn correlations(data: &Dataset, pred: &[Prediction]) -> Vec<Correlation> {
     out.sort_by(|a, b| b.r.abs().total_cmp(&a.r.abs()));
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::measure::Row;
+
+    /// Three rows of a time series with varying inputs, and predictions that vary with them.
+    fn series() -> (Dataset, Vec<Prediction>) {
+        let rows: Vec<Row> = (0..3)
+            .map(|i| Row {
+                line: i + 2,
+                series: "s".into(),
+                condition: String::new(),
+                cx: 0.01 * (i + 1) as f64,
+                cy: 0.0,
+                spin: 0.0,
+                v: 5.0 + i as f64,
+                fn_n: 1e5 + 1e4 * i as f64,
+                ab: None,
+                t: Some(1e-3 * i as f64),
+                t_bulk: 20.0,
+                f: 0.2 + 0.01 * (i * i) as f64,
+                extra: vec![],
+            })
+            .collect();
+        let pred = (0..3)
+            .map(|i| {
+                let x = i as f64;
+                Prediction {
+                    f: 0.2 + 0.02 * x,
+                    t_max: 30.0 + x,
+                    p_fric: 100.0 + x,
+                    p0: 1e9 + x,
+                    slip_velocity: 0.05 + x,
+                    dcx_dt: 10.0 * x,
+                }
+            })
+            .collect();
+        let data = Dataset {
+            source: "test".into(),
+            extra_names: vec![],
+            rows,
+            columns: vec![],
+            delimiter: ',',
+        };
+        (data, pred)
+    }
+
+    #[test]
+    fn every_catalogue_signature_is_a_correlated_variable() {
+        let (data, pred) = series();
+        let names: Vec<String> = correlations(&data, &pred)
+            .into_iter()
+            .map(|c| c.variable)
+            .collect();
+        for i in creep_core::effects::CATALOGUE {
+            for v in i.signature {
+                assert!(
+                    names.iter().any(|n| n == v),
+                    "effect {}: signature variable {v} is not one of {names:?}",
+                    i.name
+                );
+            }
+        }
+    }
+}

@@ -151,7 +151,7 @@ fn each_effect_is_off_a_fast_path_or_agrees_with_the_general_path() {
 }
 
 /// Under the higher-order rules a move's start node comes from the lattice cache (or from
-/// the previous leading-edge sub-move) where the move starts on a node (issue 24 step 9).
+/// the previous leading-edge sub-move) where the move starts on a node.
 /// Computing every start node where its move starts gives the same outputs to rounding,
 /// also across a reversal of the rolling direction and a lift-off, after which the node
 /// states are reset where the bristles stand, between the nodes (where the cache would

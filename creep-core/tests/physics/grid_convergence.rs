@@ -7,7 +7,7 @@ fn default_grid_within_1_percent_of_4x_refined() {
     for name in ["table4.1", "fastsim", "dry", "wet"] {
         let base = preset(name);
         let fine = with_grid(base.clone(), 4 * DEFAULT_GRID.nx, 4 * DEFAULT_GRID.ny);
-        // 30 m/s: wet's bad corner, 1.19 % off on the first-order `cells` rules (step 11)
+        // 30 m/s: wet's bad corner, 1.19 % off on the first-order `cells` rules
         for v in [5.0, 20.0, 30.0] {
             for c in [0.001, 0.003, 0.01, 0.03, 0.1, 0.3] {
                 let f0 = f_of(&base, c, v);
@@ -56,11 +56,11 @@ fn transient_converges_under_time_step_refinement() {
     assert!(e2 < 0.005, "dt = 50 us within 0.005 of dt = 25 us: {e2}");
 }
 
-/// The release weight's X (docs/model.md section 6, issue 24 step 7): with tau_c1's
+/// The release weight's X (docs/model.md section 6, "X in the gain"): with tau_c1's
 /// temperature coefficient in it, theta damped dry's hardening and sliding bristles by a
 /// weight that depends on the cell length, and f at c_x = 1.06 %, 20 m/s moved by 2.3 % from
 /// 160 to 480 cells per strip (0.26975 -> 0.27607); without it by 0.06 %. (From about 560
-/// cells on dry also had a yield-surface chatter of its own, fixed by step 10: the test below.)
+/// cells on dry also had a yield-surface chatter of its own: the test below.)
 #[test]
 fn dry_fine_grids_do_not_drift_with_the_release_weight() {
     let base = preset("dry");
@@ -72,16 +72,15 @@ fn dry_fine_grids_do_not_drift_with_the_release_weight() {
     );
 }
 
-/// Bristles riding on the yield surface on fine grids (docs/model.md section 9, step 10): a
+/// Bristles riding on the yield surface on fine grids (docs/model.md section 6): a
 /// plastic bristle whose stress follows tau_c1(T) (tau_c1 rising with the pressure toward the
-/// middle of the contact) heats as it rides. Before step 10 the release weight theta did not
-/// count tau_c1's temperature coefficient and took its reference at t_hist, so on cells
-/// shorter than about 25 um the bristle dropped back to elastic for one cell and yielded again
+/// middle of the contact) heats as it rides. When the release weight theta does not
+/// count tau_c1's temperature coefficient and takes its reference at t_hist, on cells
+/// shorter than about 25 um the bristle drops back to elastic for one cell and yields again
 /// higher (dry, 20 m/s, c_x 1.06 %, 7 strips: f +1.2 % from 320 to 640 cells), and the sliding
-/// zone lost heat (wet, 30 m/s, c_x 1 %: the T_max rise fell from 320 cells on, by 0.4 K from
-/// 640 to 1280). Now f, P_fric and T_max converge under the cell-by-cell rules (whose step
-/// 10 this is; the higher-order rules' f is converged there to 1e-4, its differences
-/// alternate): on 160, 320, 640 and 1280 cells per strip the successive differences keep
+/// zone loses heat (wet, 30 m/s, c_x 1 %: the T_max rise falls from 320 cells on, by 0.4 K
+/// from 640 to 1280). With the rule f, P_fric and T_max converge under the cell-by-cell rules
+/// (the higher-order rules' f is converged there to 1e-4, its differences alternate): on 160, 320, 640 and 1280 cells per strip the successive differences keep
 /// their sign and shrink.
 #[test]
 fn fine_grids_converge_where_bristles_ride_on_the_yield_surface() {
@@ -128,7 +127,7 @@ fn step_response(
         .collect()
 }
 
-/// The higher-order rules (`Scheme::CellsHigher`, docs/model.md section 9, step 8) cut the
+/// The higher-order rules (`Scheme::CellsHigher`, docs/model.md section 3.3) cut the
 /// error of a creepage step's F_x to below 0.6 of the cell-by-cell rules', grid for grid,
 /// against a 320x5 reference of the same scheme (table4.1, wet, dry at 20 m/s, c_x 0.2 % -> 5 %, 0.1 ms steps, six transits).
 /// Measured against 320x5 (errors in % of the largest |f|, 20x5 / 40x5 / 80x5): table4.1
@@ -202,12 +201,12 @@ fn fastsim_and_elastic_unloading_ignore_the_higher_order_rules() {
 
 /// At low creepage the contact's hottest point is at the trailing edge: the falling pressure
 /// there releases the layer's stress within a small part of the last cell, and that release
-/// heats the bristle (docs/model.md section 9, step 13). Under the higher-order rules the
+/// heats the bristle (docs/model.md section 3.3, rule 6). Under the higher-order rules the
 /// edge's temperature comes from sub-moves graded toward the edge, and the T_max rise of a
 /// coarse grid is close to a fine grid's; the first-order rules' single move over the last
 /// cell spreads the release over the whole cell and misses a third of the rise.
 /// Measured (steady, 20 m/s, c_x 0.5 %, T_max rise against 640x21 of the same scheme,
-/// 10x3 / 20x3 / 40x5): see the assertion message; before step 13 `cells-ho` was as far off
+/// 10x3 / 20x3 / 40x5): see the assertion message; without that rule `cells-ho` is as far off
 /// as `cells` (table4.1 20x3: 22.5 K against 32.2 K, -30 %).
 #[test]
 fn trailing_edge_temperature_converges_at_low_creepage() {

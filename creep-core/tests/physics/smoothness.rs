@@ -1,4 +1,4 @@
-//! Outputs smooth in the inputs (issue 25): the temperature solve converges tightly enough that finite-difference derivatives do not see its tolerance.
+//! Outputs smooth in the inputs (docs/model.md section 6, "Tolerance of the temperature solve"): the temperature solve converges tightly enough that finite-difference derivatives do not see its tolerance.
 
 use creep_core::{Config, Inputs, Model};
 
@@ -47,8 +47,8 @@ fn fx_is_smooth_in_cx() {
     // a derivative, not noise: not zero and below Kalker's initial slope (about 4e8 N per
     // unit creepage). Its size here is a property of the grid, not of the smoothness: c_x =
     // 0.5 % at 10 m/s is the flat top of the dry curve (steady slope 2e4-8e4 N on 320x84),
-    // where 80x21 gave -1.1e6 N before the cold crossing (issue 24, step 5) and -9.2e4 N
-    // with it; the agreement of the three increments above is the smoothness check.
+    // where 80x21 gives -1.1e6 N without the cold crossing (docs/model.md section 4) and
+    // -9.2e4 N with it; the agreement of the three increments above is the smoothness check.
     assert!(
         d[1].abs() > 1e4 && d[1].abs() < 1e9,
         "dF_x/dc_x = {} N",

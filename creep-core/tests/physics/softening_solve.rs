@@ -80,7 +80,8 @@ fn scalar_solve_agrees_with_the_general_solve_in_steady_state() {
 }
 
 /// On fine grids (cells shorter than about 25 um) a plastic bristle may ride on tau_c1 and a
-/// damped release takes its reference at the predictor (docs/model.md section 9, step 10):
+/// damped release takes its reference at the predictor (docs/model.md section 6,
+/// "Riding bristles"):
 /// the general solve's; the scalar solve leaves those moves to it. Without that, dry's F_x on
 /// 640x21 at 20 m/s and c_x 1 % differed by 1.3 % between the two (riding) and wet's T_max
 /// rise at 30 m/s by 0.39 K (the reference).

@@ -62,8 +62,8 @@ const TABLE41_OUTPUTS: [f64; 13] = [
 /// How far Polach's fixture may be from a fresh run of this build: it has not changed since
 /// the fixtures were written, 1e-5 (its tolerance change moved nothing). The bristle model
 /// has no such bound: its discretisation changed since (the temperature solve's tolerance,
-/// issue 25; the whole-cell commit, the cold crossing and the Gauss-Legendre strips, issue
-/// 24: on this 8 x 3 grid the strips moved, 6.4 % in F_x at the fixture's instant). Its
+/// the whole-cell commit, the cold crossing and the Gauss-Legendre strips, docs/history.md:
+/// on this 8 x 3 grid the strips moved, 6.4 % in F_x at the fixture's instant). Its
 /// reader is checked bit for bit instead: the outputs the fixture holds, re-saving, and the
 /// agreement with a fresh run one transit time after loading.
 const POLACH_TOL: f64 = 1e-5;
@@ -101,10 +101,10 @@ fn version_2_states_load_and_continue() {
         // A fresh run of this build and the continuation of the old build's state see the
         // same inputs. Polach has not changed and agrees from the first step. The bristle
         // model's continuation keeps the fixture's lattice: its strips' cells were cut for
-        // equal strips, and since issue 24's step 6 the strips sit at the Gauss-Legendre
+        // equal strips, and the strips now sit at the Gauss-Legendre
         // nodes with other lengths, so its nodes sit elsewhere along the strips than a fresh
-        // run's, and the two never agree bit for bit (they did before step 6, one transit
-        // time after loading). Once every bristle the old build placed has left the contact
+        // run's, and the two never agree bit for bit (with equal strips they did, one
+        // transit time after loading). Once every bristle the old build placed has left the contact
         // (one transit time 2a/v, plus the step that completes the last cell) they differ
         // by the ripple of this 8 x 3 lattice only: measured at most 0.6 % in F_x, 1.6 % in
         // T_mean, 3.0 % in P_fric, 0.045 in an area fraction; a value read into the wrong

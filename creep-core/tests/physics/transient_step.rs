@@ -33,8 +33,8 @@ fn step_0p1_to_1_percent_settles_after_2a_over_v() {
     // below the new steady value by more than half the 0.5 % band that counts as settled,
     // and by several times what it deviates once settled (the lattice's ripple). The
     // converged gap is 0.52 % (320x21 and 640x41, 0.01 ms steps); a fixed 0.5 % threshold
-    // sat within the default grid's error of it (0.48 % with the Gauss-Legendre strips of
-    // issue 24 step 6, 0.51 % before), so the test no longer asks for it.
+    // sat within the default grid's error of it (0.48 % with the Gauss-Legendre strips,
+    // 0.51 % with equal strips), so the test no longer asks for it.
     let half_dev = (target - f_half) / target;
     assert!(
         half_dev > 0.0025 && half_dev > 4.0 * settled_dev,
@@ -240,8 +240,8 @@ fn sub_cell_steps_on_a_fine_grid_stay_on_the_steady_state() {
 /// parts), a single 320-cell strip at 5 m/s stays on its steady f at every whole cell to
 /// rounding (measured 0 to 1e-12), and in between within 0.1 % (measured 3.2e-4: the grid's
 /// quadrature with the bristles between the nodes, which does not accumulate). Each cell is
-/// committed whole from the bristles' node states (docs/model.md, section 3); when the
-/// parts were committed one by one (before issue 24's step 4) f drifted by +1.36 % over
+/// committed whole from the bristles' node states (docs/model.md section 3.2); when the
+/// parts are committed one by one f drifts by +1.36 % over
 /// three transits here.
 #[test]
 fn constant_inputs_stay_on_the_steady_state_when_steps_cut_the_cells() {

@@ -1,4 +1,4 @@
-//! Wheel slide (issue 10, item 4): the flash temperature over the wheel surface's own time in the contact (effect `surface_time_flash`) equals the seed's at c_x = 0, scales the temperature rise by sqrt(v / v_w), and stays finite and continuous down to a locked wheel.
+//! Wheel slide (docs/model.md section 11): the flash temperature over the wheel surface's own time in the contact (effect `surface_time_flash`) equals the seed's at c_x = 0, scales the temperature rise by sqrt(v / v_w), and stays finite and continuous down to a locked wheel.
 use creep_core::params::P;
 use creep_core::{Config, Effect, Inputs, Model, Outputs};
 

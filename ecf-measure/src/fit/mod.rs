@@ -6,7 +6,7 @@
 //! finite interval. The Jacobian is a forward difference in z. Standard errors come from the
 //! covariance s^2 (J^T J)^-1 in parameter units at the optimum, s^2 = RSS/(n - k).
 //!
-//! A fit never ends worse than it started (issue 26): a start on (or within a thousandth of
+//! A fit never ends worse than it started: a start on (or within a thousandth of
 //! the interval of) a bound, where the change of variables has no slope, begins a little
 //! inside; a result stuck at a bound is fitted again with that parameter on the bound and
 //! kept there when the data push it outward (moving it inside makes the fit worse); a

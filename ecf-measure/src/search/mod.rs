@@ -31,9 +31,10 @@
 //!    the paired difference.
 //!
 //! A form is proposed when it beats the best model so far, lowers the configuration's own
-//! held-out CV(RMSE) by [`crate::heldout::CLAIM_FRACTION`] (as a catalogue effect is
-//! claimed), and its per-row held-out absolute errors are lower than the configuration's by
-//! at least [`EVIDENCE`] standard errors of the paired difference.
+//! held-out CV(RMSE) by [`GAIN_OF_NOISE`] of the noise level (by
+//! [`crate::heldout::CLAIM_FRACTION`] of its own when the noise cannot be estimated), and its
+//! per-row held-out absolute errors are lower than the configuration's by at least
+//! [`EVIDENCE`] standard errors of the paired difference.
 
 mod fits;
 pub(crate) mod inverse;
@@ -66,6 +67,22 @@ pub use fits::{FINALISTS, FIT_TOLERANCE};
 /// proposed form must beat the configuration as given.
 pub const EVIDENCE: f64 = 2.0;
 
+/// Fraction of the noise level's CV(RMSE) by which a proposed form must lower the
+/// configuration's own held-out CV(RMSE): a gain that matters against the scatter of the
+/// data, whatever the starting error. On files with nothing missing the configuration is
+/// already near the noise, where no form can gain this much without luck.
+pub const GAIN_OF_NOISE: f64 = 0.15;
+
+/// The held-out CV(RMSE) (%) a proposed form must reach at most: [`GAIN_OF_NOISE`] of the
+/// noise level `noise_cv` (%) below `base_heldout`, or [`CLAIM_FRACTION`] below it when the
+/// noise is unknown.
+pub fn proposal_bound(base_heldout: f64, noise_cv: Option<f64>) -> f64 {
+    match noise_cv.filter(|n| *n > 0.0) {
+        Some(n) => base_heldout - GAIN_OF_NOISE * n,
+        None => (1.0 - CLAIM_FRACTION) * base_heldout,
+    }
+}
+
 /// A fitted parameter of a form.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct FormParam {
@@ -96,6 +113,10 @@ pub struct Form {
     /// Held-out CV(RMSE) with every free parameter fitted on the folds, as a catalogue
     /// effect's, % (NaN for the forms not among the finalists).
     pub heldout_cv_rmse_pct: f64,
+    /// Per-row evidence against the configuration as given: the mean paired difference of
+    /// held-out absolute errors over its standard error (NaN for the forms not among the
+    /// finalists).
+    pub evidence_z: f64,
     /// The form's parameters, fitted on all rows.
     pub params: Vec<FormParam>,
     /// In-sample CV(RMSE) on all rows, % (NaN when not fitted).
@@ -299,7 +320,8 @@ struct Screened {
 }
 
 /// Searches the forms; `best_heldout` is the best held-out CV(RMSE) so far (%),
-/// `base_heldout` the configuration's own, `budget_s` the time bound.
+/// `base_heldout` the configuration's own, `noise_cv` the data's noise level (%, when
+/// known), `budget_s` the time bound.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn search(
     cfg: &Config,
@@ -311,6 +333,7 @@ pub(crate) fn search(
     opts: &FitOptions,
     best_heldout: f64,
     base_heldout: f64,
+    noise_cv: Option<f64>,
     budget_s: f64,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Search> {
@@ -358,12 +381,13 @@ pub(crate) fn search(
     cost.finalists = finals.len();
     let base_resid = s.base_residuals(&folds, &inv[0]);
     let chosen = fits::choose(&finals, &short, &screened);
-    let proposed_at = chosen.filter(|&j| {
-        let f = &finals[j];
-        f.cv < best_heldout
-            && f.cv <= (1.0 - CLAIM_FRACTION) * base_heldout
-            && fits::paired_z(&base_resid, &f.resid) >= EVIDENCE
-    });
+    let z: Vec<f64> = finals
+        .iter()
+        .map(|f| fits::paired_z(&base_resid, &f.resid))
+        .collect();
+    let bound = proposal_bound(base_heldout, noise_cv);
+    let proposed_at = chosen
+        .filter(|&j| finals[j].cv < best_heldout && finals[j].cv <= bound && z[j] >= EVIDENCE);
     // the report: the finalists (the chosen one first), the rest of the shortlist, the
     // screened rest
     let mut order: Vec<usize> = (0..finals.len()).collect();
@@ -380,6 +404,7 @@ pub(crate) fn search(
     let finalist = |j: usize| -> Form {
         let (fi, mut f) = (&finals[j], report(finals[j].short));
         f.heldout_cv_rmse_pct = fi.cv;
+        f.evidence_z = z[j];
         let np = f.params.len();
         for (q, fp) in f
             .params
@@ -631,6 +656,7 @@ impl Searcher<'_> {
             screen_cv_rmse_pct: sc.cv,
             shortlist_cv_rmse_pct: f64::NAN,
             heldout_cv_rmse_pct: f64::NAN,
+            evidence_z: f64::NAN,
             params: sc
                 .plan
                 .shape

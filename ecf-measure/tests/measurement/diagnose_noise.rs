@@ -1,4 +1,4 @@
-//! Verdicts that know the noise (issue 26, item 2): the best model is said to be at the noise level when nothing is missing, and N times above it when an effect outside the catalogue is.
+//! Verdicts that know the noise: the best model is said to be at the noise level when nothing is missing, and N times above it when an effect outside the catalogue is.
 use crate::common::{preset, with_grid};
 use crate::curves::{noise, steady_curves};
 use creep_core::Config;

@@ -1,4 +1,4 @@
-//! The search of formula-effect forms (issue 26, item 1): on files whose truth has an effect outside the catalogue it proposes the right variable and target and a configuration that fits; on files with nothing missing it proposes nothing.
+//! The search of formula-effect forms (docs/measurements.md, "The search"): on files whose truth has an effect outside the catalogue it proposes the right variable and target and a configuration that fits; on files with nothing missing it proposes nothing.
 use crate::common::{preset, with_grid};
 use crate::curves::{curves_file, noise, Curves};
 use creep_core::Config;

@@ -2,7 +2,8 @@
 //!
 //! A bounded sample of the sweep `bash scripts/loop-sweep.sh` (every case, 20 seeds of files
 //! with nothing missing per preset): two hidden effects, one that scales both strengths with
-//! speed and one in an extra column beside a distractor, and three files with nothing
+//! speed, one in an extra column beside a distractor, and a threshold in the local
+//! temperature that the noise estimate partly reads as noise; and three files with nothing
 //! missing. The time bound is lifted so that the result does not depend on the machine's
 //! speed.
 use crate::hidden;
@@ -60,6 +61,11 @@ fn both_strengths_falling_with_speed_are_found_at_the_noise() {
 #[test]
 fn a_saturating_effect_of_a_data_column_is_found_beside_a_distractor() {
     check_case("column-saturating-strengths", 8);
+}
+
+#[test]
+fn a_threshold_in_the_local_temperature_is_found_though_it_bends_the_curves() {
+    check_case("temperature-threshold-tau_c2", 9);
 }
 
 #[test]

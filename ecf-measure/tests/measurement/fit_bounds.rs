@@ -1,4 +1,4 @@
-//! Fits that never end worse than they started (issue 26, item 3): starts on a bound move off it when the data pull inward, stay at it (flagged) when the data push outward, bounds far from the solution do not change where a fit ends, and a fit ending worse than its start fails.
+//! Fits that never end worse than they started (docs/measurements.md): starts on a bound move off it when the data pull inward, stay at it (flagged) when the data push outward, bounds far from the solution do not change where a fit ends, and a fit ending worse than its start fails.
 use crate::common::{preset, with_grid};
 use creep_core::Config;
 use ecf_measure::fit::{fit_generic, fit_params, FreeParam, ParamStatus};

@@ -1,6 +1,6 @@
 //! Fits on files made with known parameters: standard errors for every kind of parameter,
 //! at-bound and non-identifiable parameters flagged separately, and failed fits reported as
-//! failures (issue 12, "Fitting").
+//! failures (docs/measurements.md).
 use crate::common::{preset, with_grid};
 use creep_core::Config;
 use ecf_measure::fit::{fit_params, FreeParam, ParamStatus};

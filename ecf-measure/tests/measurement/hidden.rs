@@ -4,7 +4,10 @@
 //! higher-order rules, 0.16 % from the converged limit, plus a formula effect that no
 //! catalogue entry has) at 5 speeds x 3 loads, 10 creepages each (150 rows), with the noise
 //! of a traction rig: normal, standard deviation 2 % of |f| plus 0.003. Extra columns hold
-//! one value per curve, drawn from the seed; a distractor column has no effect.
+//! one value per curve, drawn from the seed; a distractor column has no effect. A second
+//! layout ([`Layout::other`]) changes everything the search might have been tuned to: 4
+//! speeds x 2 loads, 16 creepages from 0.1 % to 20 % (128 rows), noise of 1 % of |f| plus
+//! 0.005.
 //! Shared by the test `diagnose_unseen` and the sweep `cargo run --release -p ecf-measure
 //! --example loop_sweep`.
 #![allow(dead_code)]
@@ -155,9 +158,45 @@ impl Rng {
     }
 }
 
-/// Standard deviation of the rig's noise at traction coefficient `f`.
-pub fn noise_sd(f: f64) -> f64 {
-    0.02 * f.abs() + 0.003
+/// Where a file's rows sit and how noisy they are.
+pub struct Layout {
+    /// Rolling speeds, m/s.
+    pub speeds: &'static [f64],
+    /// Normal loads, kN.
+    pub loads: &'static [f64],
+    /// Creepages per curve, log-spaced from `cx_range.0` to `cx_range.1` (-).
+    pub creepages: usize,
+    /// First and last creepage, -.
+    pub cx_range: (f64, f64),
+    /// Noise standard deviation: `noise.0` |f| + `noise.1`, -.
+    pub noise: (f64, f64),
+}
+
+impl Layout {
+    /// The layout of the cases: 5 speeds x 3 loads x 10 creepages, noise 2 % of |f| + 0.003.
+    pub fn standard() -> Self {
+        Layout {
+            speeds: &[5.0, 10.0, 15.0, 20.0, 25.0],
+            loads: &[60.0, 100.0, 140.0],
+            creepages: 10,
+            cx_range: (0.0015, 0.25),
+            noise: (0.02, 0.003),
+        }
+    }
+    /// Another rig: 4 speeds x 2 loads x 16 creepages, noise 1 % of |f| + 0.005.
+    pub fn other() -> Self {
+        Layout {
+            speeds: &[6.0, 12.0, 18.0, 28.0],
+            loads: &[80.0, 120.0],
+            creepages: 16,
+            cx_range: (0.001, 0.2),
+            noise: (0.01, 0.005),
+        }
+    }
+    /// Standard deviation of the rig's noise at traction coefficient `f`.
+    pub fn noise_sd(&self, f: f64) -> f64 {
+        self.noise.0 * f.abs() + self.noise.1
+    }
 }
 
 /// The file of `truth` with noise from `seed`: columns cx, f, v_mps, fn_kN, then `column`
@@ -168,13 +207,35 @@ pub fn file(
     distractor: bool,
     seed: u64,
 ) -> (Dataset, Vec<f64>) {
-    let (csv, clean) = csv_text(truth, column, distractor, seed);
+    file_in(&Layout::standard(), truth, column, distractor, seed)
+}
+
+/// [`file`] in `layout`.
+pub fn file_in(
+    layout: &Layout,
+    truth: &Config,
+    column: Option<(&str, f64, f64)>,
+    distractor: bool,
+    seed: u64,
+) -> (Dataset, Vec<f64>) {
+    let (csv, clean) = csv_text_in(layout, truth, column, distractor, seed);
     let d = Dataset::from_csv_str(&csv, "unseen.csv", &Defaults::default()).expect("file");
     (d, clean)
 }
 
 /// [`file`] as CSV text, with the noise-free values.
 pub fn csv_text(
+    truth: &Config,
+    column: Option<(&str, f64, f64)>,
+    distractor: bool,
+    seed: u64,
+) -> (String, Vec<f64>) {
+    csv_text_in(&Layout::standard(), truth, column, distractor, seed)
+}
+
+/// [`csv_text`] in `layout`.
+pub fn csv_text_in(
+    layout: &Layout,
     truth: &Config,
     column: Option<(&str, f64, f64)>,
     distractor: bool,
@@ -190,10 +251,10 @@ pub fn csv_text(
     }
     let mut csv = head + "\n";
     let mut clean = Vec::new();
-    let n = 10;
-    let (cx0, cx1) = (0.0015f64, 0.25f64);
-    for v in [5.0, 10.0, 15.0, 20.0, 25.0] {
-        for fkn in [60.0, 100.0, 140.0] {
+    let n = layout.creepages;
+    let (cx0, cx1) = layout.cx_range;
+    for &v in layout.speeds {
+        for &fkn in layout.loads {
             let mut extras = Vec::new();
             if let Some((c, lo, hi)) = column {
                 extras.push((c.to_string(), lo + (hi - lo) * rng.uniform()));
@@ -222,7 +283,7 @@ pub fn csv_text(
                     .expect("steady")
                     .f;
                 clean.push(f);
-                let y = f + noise_sd(f) * rng.normal();
+                let y = f + layout.noise_sd(f) * rng.normal();
                 csv += &format!("{cx},{y:.6},{v},{fkn}");
                 for e in &extras {
                     csv += &format!(",{}", e.1);

@@ -1,5 +1,5 @@
 //! Reading measurement files: units and spellings in headers, delimiters, creepage units,
-//! missing quantities and the messages of bad files (issue 12, "Reading files").
+//! missing quantities and the messages of bad files (docs/measurements.md, "Measurement files").
 use creep_core::Config;
 use ecf_measure::measure::{CreepageUnit, Dataset, Defaults};
 

@@ -1,4 +1,4 @@
-//! The model's warnings travel with the predictions (issue 26, item 4): each kind once, its rows counted per series, rows sharing an operating point counted each.
+//! The model's warnings travel with the predictions (docs/measurements.md, "Warnings of the model, per series"): each kind once, its rows counted per series, rows sharing an operating point counted each.
 use crate::common::{preset, with_grid};
 use ecf_measure::evaluate::{predict_warned, warnings_text};
 use ecf_measure::measure::{Dataset, Defaults};

@@ -1,4 +1,4 @@
-//! The noise level estimated from the data alone (issue 26, item 2): from repeated operating points, and from a local cubic along each curve, on files made with known noise.
+//! The noise level estimated from the data alone: from repeated operating points, and from a local cubic along each curve, on files made with known noise.
 use crate::common::{preset, with_grid};
 use crate::curves::{curves_file, noise, Curves};
 use creep_core::Config;
