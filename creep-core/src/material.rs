@@ -17,37 +17,12 @@ use crate::params::P;
 /// fall as the layer is compressed, and the reverse as it heats.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Resolved {
-    /// Effect `coulomb`: FASTSIM's bound |tau| <= mu p replaces the layer's strengths
-    /// (tau_c1 = tau_c2 = mu p).
-    pub coulomb: bool,
-    /// Effect `voce_plasticity`: Voce hardening from tau_c1 to tau_c2 (Eq. 4.2); with neither
-    /// this nor `coulomb` the bristles are purely elastic (Kalker's linear theory).
-    pub plastic: bool,
-    /// Effect `layer_elasticity`: the layer's compliance L_e in series with the bodies'
-    /// (L_k + L_e, Eq. 4.21); off: L_e = 0.
-    pub layer_el: bool,
-    /// Effect `pressure_dependence`: the pressure factors of Eq. 4.3, 4.4 (off: 1).
-    pub pressure: bool,
-    /// Effect `temperature`: heat, flash temperature (Eq. 4.22-4.35) and the temperature
-    /// factors of Eq. 4.3, 4.4 (off: 1, bristles at the bulk temperature).
-    pub temperature: bool,
-    /// Effect `transient`: the bristle grid persists between steps (off: every step is the
-    /// quasi-steady state of its inputs).
-    pub transient: bool,
-    /// Effect `surface_time_flash`: Eq. 4.34 over the wheel surface's own time x / v_w.
-    pub surface_time: bool,
-    /// Unloading rule of the bristle law: elastic unloading with effect `elastic_unloading`
-    /// or `coulomb` (FASTSIM's radial return), else the seed's same characteristic.
-    pub rule: Rule,
-    /// Configuration `bound` = parabolic: the Coulomb bound follows Kalker's parabolic
-    /// pressure (same total force) instead of the elliptic Hertz pressure.
-    pub parabolic: bool,
+    /// The effect switches and the unloading rule.
+    pub on: Switches,
+    /// Wheel and rail: elastic and thermal properties.
+    pub bodies: Bodies,
     /// Coulomb friction coefficient mu of the bound |tau| <= mu p, -.
     pub mu: f64,
-    /// Shear modulus G of wheel and rail, Pa (Kalker's flexibilities L_x, L_y, L_s).
-    pub g: f64,
-    /// Poisson's ratio nu of wheel and rail, - (Kalker's coefficients).
-    pub nu: f64,
     /// L_e,0: inverted elastic stiffness of the layer at full compression and T0 (its
     /// minimum), m/Pa (Eq. 4.4).
     pub le0: f64,
@@ -79,6 +54,50 @@ pub(crate) struct Resolved {
     /// Reference temperature T0 of the material laws, degC (Eq. 4.3, 4.4; not the bulk
     /// temperature T_B, which is an input).
     pub t0: f64,
+    /// k_q: fraction of the work dissipated in the layer that becomes heat, - (Eq. 4.29): a
+    /// bristle's heat density (both bodies, before the partition) is
+    /// q = k_q tau . (du - du_e) / h, W/m^2, du_e the elastic part of its displacement
+    /// increment du over the sub-step h.
+    pub kq: f64,
+}
+
+/// The configuration's effect switches and rules the inner loop branches on ([`Resolved::on`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Switches {
+    /// Effect `coulomb`: FASTSIM's bound |tau| <= mu p replaces the layer's strengths
+    /// (tau_c1 = tau_c2 = mu p).
+    pub coulomb: bool,
+    /// Effect `voce_plasticity`: Voce hardening from tau_c1 to tau_c2 (Eq. 4.2); with neither
+    /// this nor `coulomb` the bristles are purely elastic (Kalker's linear theory).
+    pub plastic: bool,
+    /// Effect `layer_elasticity`: the layer's compliance L_e in series with the bodies'
+    /// (L_k + L_e, Eq. 4.21); off: L_e = 0.
+    pub layer_el: bool,
+    /// Effect `pressure_dependence`: the pressure factors of Eq. 4.3, 4.4 (off: 1).
+    pub pressure: bool,
+    /// Effect `temperature`: heat, flash temperature (Eq. 4.22-4.35) and the temperature
+    /// factors of Eq. 4.3, 4.4 (off: 1, bristles at the bulk temperature).
+    pub temperature: bool,
+    /// Effect `transient`: the bristle grid persists between steps (off: every step is the
+    /// quasi-steady state of its inputs).
+    pub transient: bool,
+    /// Effect `surface_time_flash`: Eq. 4.34 over the wheel surface's own time x / v_w.
+    pub surface_time: bool,
+    /// Unloading rule of the bristle law: elastic unloading with effect `elastic_unloading`
+    /// or `coulomb` (FASTSIM's radial return), else the seed's same characteristic.
+    pub rule: Rule,
+    /// Configuration `bound` = parabolic: the Coulomb bound follows Kalker's parabolic
+    /// pressure (same total force) instead of the elliptic Hertz pressure.
+    pub parabolic: bool,
+}
+
+/// Elastic and thermal properties of the wheel and the rail, SI ([`Resolved::bodies`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Bodies {
+    /// Shear modulus G of wheel and rail, Pa (Kalker's flexibilities L_x, L_y, L_s).
+    pub g: f64,
+    /// Poisson's ratio nu of wheel and rail, - (Kalker's coefficients).
+    pub nu: f64,
     /// Thermal conductivity lambda_w of the wheel, W/(m K) (heat partition Eq. 4.30, 4.31;
     /// flash factor sqrt(kappa_w)/(lambda_w sqrt(pi)) of Eq. 4.34).
     pub lambda_w: f64,
@@ -89,35 +108,38 @@ pub(crate) struct Resolved {
     pub lambda_r: f64,
     /// Thermal diffusivity kappa_r of the rail, m^2/s (Eq. 4.31, Péclet condition Eq. 4.33).
     pub kappa_r: f64,
-    /// k_q: fraction of the work dissipated in the layer that becomes heat, - (Eq. 4.29): a
-    /// bristle's heat density (both bodies, before the partition) is
-    /// q = k_q tau . (du - du_e) / h, W/m^2, du_e the elastic part of its displacement
-    /// increment du over the sub-step h.
-    pub kq: f64,
 }
 
 impl Resolved {
     pub(crate) fn from_config(c: &Config) -> Self {
         let p = &c.params;
         Resolved {
-            coulomb: c.has(Effect::Coulomb),
-            plastic: c.has(Effect::VocePlasticity),
-            layer_el: c.has(Effect::LayerElasticity),
-            pressure: c.has(Effect::PressureDependence),
-            temperature: c.has(Effect::Temperature),
-            transient: c.has(Effect::Transient),
-            surface_time: c.has(Effect::SurfaceTimeFlash),
-            // FASTSIM's clip onto the Coulomb bound is a radial return along the trial
-            // stress: the elastic-unloading rule with tau_c1 = tau_c2 = mu p.
-            rule: if c.has(Effect::ElasticUnloading) || c.has(Effect::Coulomb) {
-                Rule::ElasticUnloading
-            } else {
-                Rule::SameCharacteristic
+            on: Switches {
+                coulomb: c.has(Effect::Coulomb),
+                plastic: c.has(Effect::VocePlasticity),
+                layer_el: c.has(Effect::LayerElasticity),
+                pressure: c.has(Effect::PressureDependence),
+                temperature: c.has(Effect::Temperature),
+                transient: c.has(Effect::Transient),
+                surface_time: c.has(Effect::SurfaceTimeFlash),
+                // FASTSIM's clip onto the Coulomb bound is a radial return along the trial
+                // stress: the elastic-unloading rule with tau_c1 = tau_c2 = mu p.
+                rule: if c.has(Effect::ElasticUnloading) || c.has(Effect::Coulomb) {
+                    Rule::ElasticUnloading
+                } else {
+                    Rule::SameCharacteristic
+                },
+                parabolic: c.bound == Bound::Parabolic,
             },
-            parabolic: c.bound == Bound::Parabolic,
+            bodies: Bodies {
+                g: p.si(P::G),
+                nu: p.si(P::Nu),
+                lambda_w: p.si(P::LambdaW),
+                kappa_w: p.si(P::KappaW),
+                lambda_r: p.si(P::LambdaR),
+                kappa_r: p.si(P::KappaR),
+            },
             mu: p.si(P::Mu),
-            g: p.si(P::G),
-            nu: p.si(P::Nu),
             le0: p.si(P::Le0),
             le_p: p.si(P::LeP),
             le_t: p.si(P::LeT),
@@ -131,10 +153,6 @@ impl Resolved {
             tc2_p: p.si(P::Tc2P),
             tc2_t: p.si(P::Tc2T),
             t0: p.si(P::T0),
-            lambda_w: p.si(P::LambdaW),
-            kappa_w: p.si(P::KappaW),
-            lambda_r: p.si(P::LambdaR),
-            kappa_r: p.si(P::KappaR),
             kq: p.si(P::Kq),
         }
     }
@@ -145,7 +163,7 @@ impl Resolved {
     /// are multiplied by it, the compliances L_p, L_e divided.
     #[inline]
     pub(crate) fn pf(&self, p: f64, c: f64) -> f64 {
-        if !self.pressure || c.is_infinite() {
+        if !self.on.pressure || c.is_infinite() {
             1.0
         } else {
             let x = p * c;
@@ -163,7 +181,7 @@ impl Resolved {
     #[inline]
     fn pf_pair(&self, p: f64, c1: f64, c2: f64) -> (f64, f64) {
         let (x1, x2) = (p * c1, p * c2);
-        if self.pressure && x1 > 1e-3 && x2 > 1e-3 && x1.is_finite() && x2.is_finite() {
+        if self.on.pressure && x1 > 1e-3 && x2 > 1e-3 && x1.is_finite() && x2.is_finite() {
             let (e1, e2) = exp_pair(-x1, -x2);
             (1.0 - e1, 1.0 - e2)
         } else {
@@ -177,7 +195,7 @@ impl Resolved {
     /// are multiplied by it, the compliances divided.
     #[inline]
     pub(crate) fn tf(&self, t: f64, c: f64) -> f64 {
-        if !self.temperature || c == 0.0 {
+        if !self.on.temperature || c == 0.0 {
             1.0
         } else {
             (-(t - self.t0) * c).exp()
@@ -210,7 +228,7 @@ impl Resolved {
         } else {
             pt.p0 * (1.0 - rr).sqrt()
         };
-        let bound = if r.parabolic {
+        let bound = if r.on.parabolic {
             // Kalker's parabolic pressure with the same total force: 2 F_N/(pi a b) = 4/3 p0 for the
             // ellipse; 3 pi/8 p0 for the line contact.
             let k = if pt.line {
@@ -232,7 +250,7 @@ impl Resolved {
                 lp: 1.0,
             };
         }
-        let le = if r.layer_el {
+        let le = if r.on.layer_el {
             r.le0 / r.pf(p, r.le_p)
         } else {
             0.0
@@ -266,7 +284,7 @@ impl Resolved {
     #[inline(always)]
     pub(crate) fn material_base(&self, np: &NodeP, t: f64) -> Material {
         let r = self;
-        if r.coulomb {
+        if r.on.coulomb {
             let le = np.le / r.tf(t, r.le_t);
             return Material {
                 tc1: np.bound,
@@ -275,7 +293,7 @@ impl Resolved {
                 le,
             };
         }
-        if !r.plastic {
+        if !r.on.plastic {
             let le = np.le / r.tf(t, r.le_t);
             return Material {
                 tc1: f64::INFINITY,
@@ -292,7 +310,7 @@ impl Resolved {
                 le: 0.0,
             };
         }
-        let (tf1, tf2, tfp, tfe) = if r.temperature {
+        let (tf1, tf2, tfp, tfe) = if r.on.temperature {
             // equal coefficients share one exponential (Tab. 4.1 has three equal ones);
             // two different ones (the dry presets) are taken in one two-lane exponential
             let (tf1, tf2) = if r.tc2_t == r.tc1_t {
@@ -343,7 +361,7 @@ impl Resolved {
     ///   of a crossing starts at tau_c1(T), so tau_c1's coefficient too.
     #[inline]
     pub(crate) fn release_t(&self) -> f64 {
-        match self.rule {
+        match self.on.rule {
             Rule::SameCharacteristic => self.tc2_t.max(self.lp_t),
             Rule::ElasticUnloading => self.tc1_t.max(self.tc2_t).max(self.lp_t),
         }
@@ -383,7 +401,7 @@ impl Resolved {
 /// the configuration's parameters and effects (Eq. 4.3, 4.4; formula effects not applied).
 pub fn layer_material(cfg: &Config, p: f64, t: f64) -> Material {
     let r = Resolved::from_config(cfg);
-    let le = if r.layer_el {
+    let le = if r.on.layer_el {
         r.le0 / r.pf(p, r.le_p) / r.tf(t, r.le_t)
     } else {
         0.0

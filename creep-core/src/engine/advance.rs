@@ -92,7 +92,7 @@ impl Mover<'_> {
         h: f64,
         heat: bool,
     ) -> StepFactors {
-        if !(self.law.r.temperature && heat) {
+        if !(self.law.r.on.temperature && heat) {
             return StepFactors::identity(h);
         }
         if let Some((_, f)) = cache.iter().find(|(hh, _)| *hh == h) {
@@ -163,7 +163,7 @@ impl Mover<'_> {
         // temperatures along it from sub-moves graded toward the edge (below)
         let dxi = 2.0 * self.lat.ell[j] / self.lat.nx as f64;
         let trailing = self.law.ho
-            && self.law.r.temperature
+            && self.law.r.on.temperature
             && kin.heat
             && kin.h > 0.0
             && xi_end <= -self.lat.ell[j] + 1e-9 * dxi;
@@ -220,7 +220,7 @@ impl Mover<'_> {
                 1.0 - f * f
             }
         };
-        let heat = self.law.r.temperature && kin.heat;
+        let heat = self.law.r.on.temperature && kin.heat;
         let graded = heat.then(|| self.law.kernel.graded_factors::<EDGE_SUB>(kin.h));
         // sub-move i starts where i - 1 ended: its start node is that one's end node
         let mut np_prev: Option<NodeP> = None;
@@ -327,7 +327,7 @@ impl Mover<'_> {
         let old = s.tau;
         match np0 {
             // the higher-order rules: tau_c2 and L_p from the start node's to the end node's
-            Some(np0) if self.law.r.rule == bristle::Rule::SameCharacteristic => {
+            Some(np0) if self.law.r.on.rule == bristle::Rule::SameCharacteristic => {
                 let mv = bristle::Move::new(s, du);
                 let m0 = self.law.r.material_base(np0, k.t_bulk);
                 mv.set_along(bristle::Along {
@@ -337,7 +337,7 @@ impl Mover<'_> {
                 });
                 bristle::update_move(s, &mv, dtau, &m, [lxe, lye]);
             }
-            _ => bristle::update(s, du, dtau, &m, [lxe, lye], self.law.r.rule),
+            _ => bristle::update(s, du, dtau, &m, [lxe, lye], self.law.r.on.rule),
         }
         s.q = if k.heat {
             let dux = du[0] - lxe * (s.tau[0] - old[0]);
@@ -392,7 +392,7 @@ impl Mover<'_> {
             return;
         }
         // without temperature the accumulators stay zero: no copies
-        let hot = self.law.r.temperature;
+        let hot = self.law.r.on.temperature;
         self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
         let nodes = &*sp.nodes;
         for k in 0..count {

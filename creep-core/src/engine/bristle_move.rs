@@ -94,7 +94,7 @@ impl TrialMove<'_> {
         let mut ns = self.old;
         match &self.mv {
             Some(mv) => bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye]),
-            None => bristle::update(&mut ns, self.du, dtau, &m, [lxe, lye], self.c.law.r.rule),
+            None => bristle::update(&mut ns, self.du, dtau, &m, [lxe, lye], self.c.law.r.on.rule),
         }
         let q = if self.k.heat {
             self.heat(&mut ns, [lxe, lye])
@@ -151,7 +151,7 @@ impl TrialMove<'_> {
     fn set_cold_crossing(&mut self) {
         let (c, k, np, old) = (self.c, self.k, self.np, self.old);
         if !(self.mv.is_some()
-            && c.law.r.temperature
+            && c.law.r.on.temperature
             && k.heat
             && old.regime == bristle::Regime::Elastic)
         {
@@ -186,7 +186,7 @@ impl TrialMove<'_> {
         };
         let c = self.c;
         let m0 = c.law.material(np0, self.old.temp, self.u_abs, self.slip);
-        let lp_sqrt = if c.law.r.temperature && self.k.heat {
+        let lp_sqrt = if c.law.r.on.temperature && self.k.heat {
             c.lp_sqrt(self.k, self.self_c, &self.old, self.du)
         } else {
             f64::NAN
@@ -221,7 +221,7 @@ impl TrialMove<'_> {
         if self.theta < 1.0
             && self.self_c > 0.0
             && old.q > 0.0
-            && self.c.law.r.rule == bristle::Rule::SameCharacteristic
+            && self.c.law.r.on.rule == bristle::Rule::SameCharacteristic
             && (self.riding || !higher_order)
         {
             let (at_predictor, _) = eval(self.t_hist + self.self_c * old.q);
@@ -243,7 +243,7 @@ impl TrialMove<'_> {
     #[inline]
     fn solve(&self, eval: impl Fn(f64) -> (BristleState, f64) + Copy) -> (BristleState, f64) {
         let (t_hist, self_c, old) = (self.t_hist, self.self_c, &self.old);
-        let temperature = self.c.law.r.temperature;
+        let temperature = self.c.law.r.on.temperature;
         let t_tol = self.c.law.t_tol;
         let sliding = |s: &BristleState| s.regime == bristle::Regime::Sliding;
         let predicted =
@@ -297,7 +297,7 @@ impl Mover<'_> {
         let eval = |t: f64| tm.trial(t);
         tm.seed_release_reference(np0.is_some(), eval);
         let (mut ns, q) = tm.solve(eval);
-        ns.temp = if self.law.r.temperature {
+        ns.temp = if self.law.r.on.temperature {
             t_hist + tm.self_c * q
         } else {
             k.t_bulk
@@ -307,7 +307,7 @@ impl Mover<'_> {
         let q = if tm.ho && k.heat && q > 0.0 { ns.q } else { q };
         ns.q = q;
         *s = ns;
-        if self.law.r.temperature && k.heat && (warm || q > 0.0) {
+        if self.law.r.on.temperature && k.heat && (warm || q > 0.0) {
             fac.accumulate(acc, q); // alpha is folded into alpha_c
         }
         q
@@ -340,10 +340,10 @@ impl Mover<'_> {
         // heat follows tau_c1(T): the release weight then bounds tau_c1's temperature
         // coefficient too (docs/model.md section 6). The material at t_hist is the
         // solve's first evaluation, kept for it.
-        let m_plastic = (self.law.r.temperature
+        let m_plastic = (self.law.r.on.temperature
             && k.heat
             && old.regime == bristle::Regime::Plastic
-            && self.law.r.rule == bristle::Rule::SameCharacteristic)
+            && self.law.r.on.rule == bristle::Rule::SameCharacteristic)
             .then(|| self.law.material(np, t_hist, u_abs, slip));
         let riding = m_plastic.is_some_and(|m| bristle::norm(old.tau) < m.tc1);
         let theta = self.release_weight(k, np, old.tau, riding);
@@ -352,7 +352,7 @@ impl Mover<'_> {
         // every trial temperature, so this is computed once per move, not per evaluation.
         let fixed = self.law.fast.fixed_le.then(|| k.flex(np.le, xy));
         // the law's material-independent parts of this move, shared by all evaluations
-        let mv = (self.law.r.rule == bristle::Rule::SameCharacteristic)
+        let mv = (self.law.r.on.rule == bristle::Rule::SameCharacteristic)
             .then(|| bristle::Move::new(&old, du));
         TrialMove {
             c: self,
@@ -389,7 +389,7 @@ impl Mover<'_> {
     /// Eq. 4.35), degC; the bulk temperature for a cold history or without heat.
     #[inline]
     fn t_hist(&self, k: &Kin, acc: &[f64; N_KERNEL], fac: &StepFactors) -> f64 {
-        if self.law.r.temperature && k.heat && acc[0] != 0.0 {
+        if self.law.r.on.temperature && k.heat && acc[0] != 0.0 {
             k.t_bulk + k.alpha_c * fac.history(acc)
         } else {
             k.t_bulk
@@ -407,7 +407,7 @@ impl Mover<'_> {
     /// ([`crate::material::Resolved::release_t_riding`]).
     #[inline]
     pub(super) fn release_weight(&self, k: &Kin, np: &NodeP, tau: [f64; 2], riding: bool) -> f64 {
-        if !(k.heat && self.law.r.temperature) {
+        if !(k.heat && self.law.r.on.temperature) {
             return 1.0;
         }
         let cmax = if riding {

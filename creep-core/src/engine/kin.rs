@@ -66,7 +66,7 @@ impl Mover<'_> {
         let vw = i.v * (1.0 + i.cx).abs();
         // with surface_time_flash alpha sqrt(v / v_w): Eq. 4.34 over the wheel surface's
         // time x / v_w, written in the layer's time x / v (finite for v_w -> 0)
-        let partition = if self.law.r.surface_time {
+        let partition = if self.law.r.on.surface_time {
             thermal::surface_time_partition
         } else {
             thermal::heat_partition
@@ -74,12 +74,13 @@ impl Mover<'_> {
         let alpha = partition(
             vw,
             i.v,
-            self.law.r.lambda_w,
-            self.law.r.kappa_w,
-            self.law.r.lambda_r,
-            self.law.r.kappa_r,
+            self.law.r.bodies.lambda_w,
+            self.law.r.bodies.kappa_w,
+            self.law.r.bodies.lambda_r,
+            self.law.r.bodies.kappa_r,
         );
-        let alpha_c = alpha * thermal::flash_factor(self.law.r.lambda_w, self.law.r.kappa_w);
+        let alpha_c =
+            alpha * thermal::flash_factor(self.law.r.bodies.lambda_w, self.law.r.bodies.kappa_w);
         Kin {
             h,
             dist,

@@ -65,7 +65,7 @@ impl Law {
         self.scheme = scheme;
         self.ho = scheme == Scheme::CellsHigher
             && model == ModelKind::Ecf
-            && self.r.rule == crate::bristle::Rule::SameCharacteristic;
+            && self.r.on.rule == crate::bristle::Rule::SameCharacteristic;
     }
 
     /// True if the dedicated FASTSIM march applies: the configuration lies within what

@@ -274,11 +274,12 @@ impl Contact {
             } else {
                 (a, b)
             };
-            let c = kalker::coefficients(ka, kb, self.law.r.nu)?;
-            self.flex = kalker::flexibilities(ka, kb, self.law.r.g, &c);
+            let c = kalker::coefficients(ka, kb, self.law.r.bodies.nu)?;
+            self.flex = kalker::flexibilities(ka, kb, self.law.r.bodies.g, &c);
             if self.patch.line {
                 // a 2-D strip: Carter's flexibility, not the elliptic one (kalker.rs)
-                let (lx, ly) = kalker::line_flexibilities(a, self.law.r.g, self.law.r.nu);
+                let (lx, ly) =
+                    kalker::line_flexibilities(a, self.law.r.bodies.g, self.law.r.bodies.nu);
                 self.flex.0 = lx;
                 self.flex.1 = ly;
             }
@@ -286,14 +287,14 @@ impl Contact {
         }
         self.state.run.inputs = *inputs;
         self.update_modifiers()?;
-        if self.law.r.temperature && inputs.v > V_STANDSTILL {
+        if self.law.r.on.temperature && inputs.v > V_STANDSTILL {
             let vw = inputs.v * (1.0 + inputs.cx).abs();
             if !thermal::peclet_ok(
                 self.patch.a,
                 inputs.v,
                 vw,
-                self.law.r.kappa_w,
-                self.law.r.kappa_r,
+                self.law.r.bodies.kappa_w,
+                self.law.r.bodies.kappa_r,
             ) {
                 let msg = format!(
                     "Péclet condition a (v + v_w) > 20 (kappa_r + kappa_w) (Eq. 4.33) not met at v = {} m/s, a = {} mm: the flash temperature model neglects lateral heat conduction that matters here",
@@ -304,7 +305,7 @@ impl Contact {
                     self.warnings.push(msg);
                 }
             }
-            if (1.0 + inputs.cx).abs() < 0.1 && !self.law.r.surface_time {
+            if (1.0 + inputs.cx).abs() < 0.1 && !self.law.r.on.surface_time {
                 let msg = format!(
                     "wheel surface speed v (1 + c_x) = {:.3} m/s is below 10 % of v (c_x = {}, wheel slide): the heat partition of Eq. 4.30 sends the heat into the rail and the seed's flash temperature (Eq. 4.34, evaluated in the layer's time) then underestimates the contact temperature by about sqrt(v_w/v), down to none for a locked wheel; the effect surface_time_flash evaluates it over the wheel surface's own time (docs/model.md section 11)",
                     inputs.v * (1.0 + inputs.cx).abs(),
@@ -344,7 +345,7 @@ impl Contact {
 
     /// [`Self::step`] in the frame where the contact rolls forwards (v >= 0).
     fn step_forward(&mut self, dt: f64, inputs: &Inputs) -> Result<Outputs> {
-        if !self.law.r.transient || !self.state.run.initialized {
+        if !self.law.r.on.transient || !self.state.run.initialized {
             let out = self.steady_forward(inputs)?;
             self.state.run.time += dt;
             return Ok(out);

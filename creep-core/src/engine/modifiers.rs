@@ -222,6 +222,6 @@ impl Law {
     #[inline]
     pub(super) fn material(&self, np: &NodeP, t: f64, u: f64, slip: f64) -> Material {
         let m = self.r.material_base(np, t);
-        self.apply_modifiers(m, self.r.coulomb, np.p, t, u, slip)
+        self.apply_modifiers(m, self.r.on.coulomb, np.p, t, u, slip)
     }
 }

@@ -58,7 +58,7 @@ impl Mover<'_> {
         if theta < 1.0
             && old.q > 0.0
             && np0.is_none()
-            && self.law.r.rule == Rule::SameCharacteristic
+            && self.law.r.on.rule == Rule::SameCharacteristic
         {
             return None;
         }
