@@ -79,7 +79,7 @@ impl Contact {
     }
 
     pub(super) fn integrate(&self) -> Outputs {
-        let (a, b) = (self.patch.a, self.patch.b);
+        let (a, b) = (self.load.patch.a, self.load.patch.b);
         let nx = self.lat.nx;
         let mut w = vec![0.0; nx + 1];
         let (mut fx, mut fy, mut mz, mut pf, mut tsum, mut area) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
@@ -87,12 +87,12 @@ impl Contact {
         let mut tmax = f64::NEG_INFINITY;
         for j in 0..self.lat.ny {
             self.weights(j, &mut w);
-            let dy = if self.patch.line {
+            let dy = if self.load.patch.line {
                 2.0 * b
             } else {
                 self.lat.deta[j] * b
             };
-            let y = if self.patch.line {
+            let y = if self.load.patch.line {
                 0.0
             } else {
                 self.lat.eta[j] * b
@@ -143,7 +143,7 @@ impl Contact {
             frac_sliding: fr[2] / area,
             a,
             b,
-            p0: self.patch.p0,
+            p0: self.load.patch.p0,
         }
     }
 
@@ -163,20 +163,20 @@ impl Contact {
             .map(|slot| {
                 let xi = self.lat.ell[j] - (slot as f64 + self.state.phase[j]) * dxi;
                 let s = &self.state.st[self.idx(j, slot)];
-                let np = self.law.r.node_p(&self.patch, xi, self.lat.eta[j]);
+                let np = self.law.r.node_p(&self.load.patch, xi, self.lat.eta[j]);
                 let v = self.state.run.inputs.v;
                 let slip = v
                     * (self.state.run.inputs.cx
-                        - self.state.run.inputs.spin * self.lat.eta[j] * self.patch.b)
+                        - self.state.run.inputs.spin * self.lat.eta[j] * self.load.patch.b)
                         .hypot(
                             self.state.run.inputs.cy
-                                + self.state.run.inputs.spin * xi * self.patch.a,
+                                + self.state.run.inputs.spin * xi * self.load.patch.a,
                         );
                 let m = self.law.material(&np, s.temp, s.u[0].hypot(s.u[1]), slip);
                 // rolling backwards: the grid is held mirrored (x -> -x, tau_x -> -tau_x)
                 let sgn = if self.state.run.reversed { -1.0 } else { 1.0 };
                 FieldPoint {
-                    x: sgn * xi * self.patch.a,
+                    x: sgn * xi * self.load.patch.a,
                     tau: (s.tau[0] * s.tau[0] + s.tau[1] * s.tau[1]).sqrt(),
                     tau_x: sgn * s.tau[0],
                     tau_c1: m.tc1,

@@ -19,8 +19,9 @@
 //! modifiers, scheme and fast paths, built once and read-only while bristles move), the
 //! lattice (`law::Lattice`, the grid's geometry), the grid state (`grid_state`: exactly
 //! what is saved and restored, with its byte layout; module [`crate::state`] frames it) and
-//! per strip its scratch (`strip::StripScratch`), besides the Hertz patch of the current load
-//! and the thread pool. A bristle move is a method of `law::Mover` (law, lattice, the step's
+//! per strip its scratch (`strip::StripScratch`); besides them the Hertz patch of the
+//! current load, FASTSIM's steady-march caches, the strip symmetry flags, the warnings and
+//! the thread pool. A bristle move is a method of `law::Mover` (law, lattice, the step's
 //! kinematics) on one strip's state (`strip::Strip`), nothing else.
 //!
 //! Where each job lives: this file holds the contact and the time loop (`step`, `steady`);
@@ -61,7 +62,8 @@ use crate::kalker;
 use crate::thermal::{self, N_KERNEL};
 use grid_state::GridState;
 use law::{Lattice, Law, Mover};
-use strip::StripScratch;
+use steady_coulomb::CoulombScratch;
+use strip::{StripScratch, Symmetry};
 
 /// Normal forces at or below this (N) are lift-off: the contact carries nothing. (The
 /// contact length shrinks like F_N^(1/3); a vanishing contact is not a tiny one.)
@@ -90,6 +92,17 @@ pub(crate) struct Partial {
     pub dcs: f64,
 }
 
+/// The Hertz patch and Kalker's flexibilities at the last normal force.
+#[derive(Clone, Debug)]
+struct Load {
+    /// The Hertz patch (semi-axes a, b in m, peak pressure p0 in Pa).
+    patch: Patch,
+    /// Normal force (N) that `patch` and `flex` belong to (NaN: none yet).
+    patch_fn: f64,
+    /// Kalker's flexibilities (L_x, L_y, L_s) at that force ([`kalker::flexibilities`]).
+    flex: (f64, f64, f64),
+}
+
 /// The persistent contact: geometry, bristle grid and its state.
 #[derive(Clone, Debug)]
 pub struct Contact {
@@ -100,34 +113,18 @@ pub struct Contact {
     lat: Lattice,
     /// What is saved and restored: time, last inputs and outputs, flags and the bristles.
     state: GridState,
-    patch: Patch,
-    /// Normal force (N) that `patch` and `flex` belong to (NaN: none yet).
-    patch_fn: f64,
-    flex: (f64, f64, f64),
+    /// The Hertz patch and flexibilities of the current normal force.
+    load: Load,
+    /// Warnings raised since [`Contact::take_warnings`] last drained them.
     warnings: Vec<String>,
     /// Per strip, the caches its moves keep (module `strip`).
     scratch: Vec<StripScratch>,
-    /// Coulomb bounds of the lattice nodes, strips side by side (FASTSIM's steady march),
-    /// for the peak pressure in `bound_cache_p0`.
-    bound_cache: Vec<[f64; steady_coulomb::LANES]>,
-    bound_cache_p0: f64,
+    /// FASTSIM's steady march's caches (module `steady_coulomb`).
+    coulomb: CoulombScratch,
+    /// Whether symmetric strips are computed once (module `strip`).
+    sym: Symmetry,
     /// Threads that advance the strips (None: the calling thread alone).
     pool: Option<std::sync::Arc<rayon::ThreadPool>>,
-    /// Every strip's state equals its mirror image's about y = 0 (strip ny - 1 - j), bit for
-    /// bit: then, while the inputs are symmetric too, one of each pair is computed and copied
-    /// ([`Contact::each_strip`]).
-    strips_mirrored: bool,
-    /// `strips_mirrored` is still to be found from the state FASTSIM's steady march left
-    /// ([`Contact::settle_mirrored`]): a run of steady states alone never needs it, so the
-    /// comparison of every strip with its mirror image waits for the next step.
-    mirrored_unknown: bool,
-    /// Every node accumulator in `node_acc` is 0 (bit for bit): FASTSIM's steady march then
-    /// need not clear them again. Whatever may write them (a step, a restored state, a reset
-    /// of the nodes) sets this false.
-    node_acc_zero: bool,
-    /// Symmetric strips are computed once ([`Contact::set_mirror_strips`]; off for tests and
-    /// benchmarks that compare both).
-    mirror_strips: bool,
 }
 
 impl Contact {
@@ -154,18 +151,16 @@ impl Contact {
             law: Law::new(cfg),
             lat,
             state: GridState::new(nx, ny),
-            patch,
-            patch_fn: f64::NAN,
-            flex: (0.0, 0.0, 0.0),
+            load: Load {
+                patch,
+                patch_fn: f64::NAN,
+                flex: (0.0, 0.0, 0.0),
+            },
             warnings: Vec::new(),
             scratch: vec![StripScratch::new(); ny],
-            bound_cache: Vec::new(),
-            bound_cache_p0: f64::NAN,
+            coulomb: CoulombScratch::new(),
+            sym: Symmetry::new(),
             pool: None,
-            strips_mirrored: true,
-            mirrored_unknown: false,
-            node_acc_zero: true,
-            mirror_strips: true,
         };
         for path in FastPath::ALL {
             c.set_fast_path(path, true);
@@ -266,31 +261,31 @@ impl Contact {
     fn set_inputs(&mut self, inputs: &Inputs) -> Result<()> {
         inputs.validate()?;
         // the patch and flexibilities depend on F_N only (the configuration is fixed)
-        if inputs.fn_n > F_LIFT_OFF && inputs.fn_n != self.patch_fn {
-            self.patch = self.patch_for(inputs.fn_n)?;
-            let (a, b) = (self.patch.a, self.patch.b);
-            let (ka, kb) = if self.patch.line {
+        if inputs.fn_n > F_LIFT_OFF && inputs.fn_n != self.load.patch_fn {
+            self.load.patch = self.patch_for(inputs.fn_n)?;
+            let (a, b) = (self.load.patch.a, self.load.patch.b);
+            let (ka, kb) = if self.load.patch.line {
                 (a, 1e6 * a)
             } else {
                 (a, b)
             };
             let c = kalker::coefficients(ka, kb, self.law.r.bodies.nu)?;
-            self.flex = kalker::flexibilities(ka, kb, self.law.r.bodies.g, &c);
-            if self.patch.line {
+            self.load.flex = kalker::flexibilities(ka, kb, self.law.r.bodies.g, &c);
+            if self.load.patch.line {
                 // a 2-D strip: Carter's flexibility, not the elliptic one (kalker.rs)
                 let (lx, ly) =
                     kalker::line_flexibilities(a, self.law.r.bodies.g, self.law.r.bodies.nu);
-                self.flex.0 = lx;
-                self.flex.1 = ly;
+                self.load.flex.0 = lx;
+                self.load.flex.1 = ly;
             }
-            self.patch_fn = inputs.fn_n;
+            self.load.patch_fn = inputs.fn_n;
         }
         self.state.run.inputs = *inputs;
         self.update_modifiers()?;
         if self.law.r.on.temperature && inputs.v > V_STANDSTILL {
             let vw = inputs.v * (1.0 + inputs.cx).abs();
             if !thermal::peclet_ok(
-                self.patch.a,
+                self.load.patch.a,
                 inputs.v,
                 vw,
                 self.law.r.bodies.kappa_w,
@@ -299,7 +294,7 @@ impl Contact {
                 let msg = format!(
                     "Péclet condition a (v + v_w) > 20 (kappa_r + kappa_w) (Eq. 4.33) not met at v = {} m/s, a = {} mm: the flash temperature model neglects lateral heat conduction that matters here",
                     inputs.v,
-                    self.patch.a * 1e3
+                    self.load.patch.a * 1e3
                 );
                 if !self.warnings.contains(&msg) {
                     self.warnings.push(msg);
@@ -359,7 +354,7 @@ impl Contact {
                 let ph = *sp.phase;
                 c.substep_strip(sp, dt, 0.0, ph, 0, c.lat.nx + 1)
             });
-        } else if inputs.v * dt >= 2.0 * self.patch.a {
+        } else if inputs.v * dt >= 2.0 * self.load.patch.a {
             // every bristle enters during the step: the steady state of the step's inputs
             // (bounded work however long the step or small the contact)
             self.each_strip(|c, sp| c.march_all(sp, dt));
@@ -413,7 +408,7 @@ impl Contact {
         self.state.run.out = if self.law.coulomb_path() {
             let out = self.steady_coulomb();
             // whether the strips are mirror images: found when a step needs it
-            self.mirrored_unknown = true;
+            self.sym.unknown = true;
             out
         } else {
             self.steady_march()
@@ -441,7 +436,7 @@ impl Contact {
     /// change of direction, a lift-off and for states saved before the whole-cell commit).
     fn reset_nodes(&mut self) {
         self.state.reset_nodes();
-        self.node_acc_zero = false;
+        self.coulomb.node_acc_zero = false;
     }
 
     /// What a move reads: the law, the lattice and the current step's kinematics.
@@ -449,8 +444,8 @@ impl Contact {
         Mover {
             law: &self.law,
             lat: &self.lat,
-            patch: &self.patch,
-            flex: self.flex,
+            patch: &self.load.patch,
+            flex: self.load.flex,
             inputs: &self.state.run.inputs,
         }
     }
@@ -469,7 +464,7 @@ impl Contact {
         self.state.run.reversed = g.run.reversed;
         self.set_inputs(&g.run.inputs)?;
         self.state = g;
-        self.node_acc_zero = false;
+        self.coulomb.node_acc_zero = false;
         self.set_mirrored(self.strips_equal());
         Ok(())
     }

@@ -7,6 +7,30 @@ use crate::bristle::{self, BristleState};
 /// chains the processor overlaps).
 pub(super) const LANES: usize = 4;
 
+/// The caches of FASTSIM's steady march, kept from call to call.
+#[derive(Clone, Debug)]
+pub(super) struct CoulombScratch {
+    /// Coulomb bounds of the lattice nodes, strips side by side, for the peak pressure `p0`.
+    pub bounds: Vec<[f64; LANES]>,
+    /// Peak pressure `bounds` belong to, Pa (NaN: none yet).
+    pub p0: f64,
+    /// Every node accumulator of the grid state is 0 (bit for bit): the march then need not
+    /// clear them again. Whatever may write them (a step, a restored state, a reset of the
+    /// nodes) sets this false.
+    pub node_acc_zero: bool,
+}
+
+impl CoulombScratch {
+    /// Empty caches, node accumulators zero.
+    pub fn new() -> Self {
+        CoulombScratch {
+            bounds: Vec::new(),
+            p0: f64::NAN,
+            node_acc_zero: true,
+        }
+    }
+}
+
 /// What every strip's march shares: the grid, the creepages and the flexibilities of the
 /// step's inputs.
 #[derive(Clone, Copy)]
@@ -86,8 +110,8 @@ impl Contact {
     fn bound_lanes(&mut self) -> Vec<[f64; LANES]> {
         let nx = self.lat.nx;
         let groups = self.lat.ny.div_ceil(LANES);
-        let mut b = std::mem::take(&mut self.bound_cache);
-        if self.bound_cache_p0 != self.patch.p0 || b.len() != groups * (nx + 1) {
+        let mut b = std::mem::take(&mut self.coulomb.bounds);
+        if self.coulomb.p0 != self.load.patch.p0 || b.len() != groups * (nx + 1) {
             b.clear();
             b.resize(groups * (nx + 1), [0.0; LANES]);
             for j in 0..self.lat.ny {
@@ -101,7 +125,7 @@ impl Contact {
                 }
                 self.scratch[j].nodes = nodes;
             }
-            self.bound_cache_p0 = self.patch.p0;
+            self.coulomb.p0 = self.load.patch.p0;
         }
         b
     }
@@ -175,12 +199,12 @@ impl Contact {
         // state in mid-run must not start from the parts and node states of the run before
         // it (the node accumulators are cleared only where a step, a reset of the nodes or a
         // restored state may have written them since they were last cleared)
-        if !self.node_acc_zero {
+        if !self.coulomb.node_acc_zero {
             self.state.node_acc.fill([0.0; crate::thermal::N_KERNEL]);
-            self.node_acc_zero = true;
+            self.coulomb.node_acc_zero = true;
         }
         self.state.part.fill(super::Partial::default());
-        self.bound_cache = bounds;
+        self.coulomb.bounds = bounds;
         self.coulomb_outputs(&tot)
     }
 
@@ -190,9 +214,9 @@ impl Contact {
         let v = self.state.run.inputs.v;
         CoulombMarch {
             nx: self.lat.nx,
-            a: self.patch.a,
-            b: self.patch.b,
-            line: self.patch.line,
+            a: self.load.patch.a,
+            b: self.load.patch.b,
+            line: self.load.patch.line,
             v,
             heat: v > V_STANDSTILL,
             t_bulk: self.state.run.inputs.t_bulk,
@@ -246,7 +270,7 @@ impl Contact {
     /// The outputs of FASTSIM's steady state from the contact's integrals (no temperature
     /// rise, no plastic regime).
     fn coulomb_outputs(&self, t: &Totals) -> super::Outputs {
-        let (a, b) = (self.patch.a, self.patch.b);
+        let (a, b) = (self.load.patch.a, self.load.patch.b);
         let t_bulk = self.state.run.inputs.t_bulk;
         let fn_n = self.state.run.inputs.fn_n;
         let area = t.area.max(f64::MIN_POSITIVE);
@@ -263,7 +287,7 @@ impl Contact {
             frac_sliding: (area - t.el).max(0.0) / area,
             a,
             b,
-            p0: self.patch.p0,
+            p0: self.load.patch.p0,
         }
     }
 }

@@ -30,6 +30,33 @@ impl StripScratch {
     }
 }
 
+/// Which strips a step computes: strips that are mirror images of each other about y = 0
+/// once, while that holds ([`Contact::each_strip`]).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Symmetry {
+    /// Every strip's state equals its mirror image's about y = 0 (strip ny - 1 - j), bit for
+    /// bit: then, while the inputs are symmetric too, one of each pair is computed and copied.
+    pub mirrored: bool,
+    /// `mirrored` is still to be found from the state FASTSIM's steady march left
+    /// ([`Contact::settle_mirrored`]): a run of steady states alone never needs it, so the
+    /// comparison of every strip with its mirror image waits for the next step.
+    pub unknown: bool,
+    /// Symmetric strips are computed once ([`Contact::set_mirror_strips`]; off for tests and
+    /// benchmarks that compare both).
+    pub on: bool,
+}
+
+impl Symmetry {
+    /// A new contact's: mirror images, computed once.
+    pub fn new() -> Self {
+        Symmetry {
+            mirrored: true,
+            unknown: false,
+            on: true,
+        }
+    }
+}
+
 /// The mutable state of strip `j` during a step: its part of the grid state and its scratch
 /// (the law, lattice and kinematics reach its moves through a [`Mover`], read only).
 pub(super) struct Strip<'a> {
@@ -78,19 +105,19 @@ impl Contact {
     /// enters only through c_s y and c_s x; the pressure through eta^2; IEEE rounding is
     /// symmetric in sign), with or without lateral creepage. So a strip whose state equals
     /// that of the strip at -eta stays equal to it: while that holds for every strip
-    /// (`strips_mirrored`) and the spin is 0, `f` runs on the strips j <= ny - 1 - j only
+    /// (`Symmetry::mirrored`) and the spin is 0, `f` runs on the strips j <= ny - 1 - j only
     /// and each is copied onto strip ny - 1 - j, with bit-identical results (test
     /// `mirrored_strips_are_bit_identical`).
     pub(super) fn each_strip(&mut self, f: impl Fn(&Mover, &mut Strip) + Sync) {
         self.settle_mirrored();
         // `f` may write the node accumulators
-        self.node_acc_zero = false;
-        let sym = self.strips_mirrored
+        self.coulomb.node_acc_zero = false;
+        let sym = self.sym.mirrored
             && self.lat.ny > 1
-            && !self.patch.line
+            && !self.load.patch.line
             && self.state.run.inputs.spin == 0.0;
-        self.strips_mirrored = sym;
-        let mirror = sym && self.mirror_strips;
+        self.sym.mirrored = sym;
+        let mirror = sym && self.sym.on;
         let computed = if mirror {
             self.lat.ny.div_ceil(2)
         } else {
@@ -175,14 +202,14 @@ impl Contact {
 
     /// Sets whether the strips are mirror images of each other (known now).
     pub(super) fn set_mirrored(&mut self, mirrored: bool) {
-        self.strips_mirrored = mirrored;
-        self.mirrored_unknown = false;
+        self.sym.mirrored = mirrored;
+        self.sym.unknown = false;
     }
 
     /// Finds whether the strips are mirror images where FASTSIM's steady march left that
     /// open ([`Self::strips_equal`] on its state, unchanged since).
     pub(super) fn settle_mirrored(&mut self) {
-        if self.mirrored_unknown {
+        if self.sym.unknown {
             self.set_mirrored(self.strips_equal());
         }
     }
@@ -222,17 +249,17 @@ impl Contact {
     /// of them (off: for tests and benchmarks that compare both; results are bit-identical).
     #[doc(hidden)]
     pub fn set_mirror_strips(&mut self, on: bool) {
-        self.mirror_strips = on;
+        self.sym.on = on;
     }
 
     /// True while the strips at eta and -eta hold equal states, so that the next step without
     /// spin computes one of each pair (for tests).
     #[doc(hidden)]
     pub fn strips_mirrored(&self) -> bool {
-        if self.mirrored_unknown {
+        if self.sym.unknown {
             self.strips_equal()
         } else {
-            self.strips_mirrored
+            self.sym.mirrored
         }
     }
 
