@@ -20,6 +20,7 @@
 
 pub mod bristle;
 pub mod bytes;
+pub mod commands;
 pub mod config;
 pub mod custom;
 pub mod effects;
