@@ -97,7 +97,7 @@ pub(crate) fn write_plots(
     dir: &Path,
 ) -> Result<Vec<(std::path::PathBuf, String)>, CreepError> {
     let mut written = Vec::new();
-    std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
+    crate::cleanup::create_dir_all(dir).map_err(|e| CreepError::Config {
         source_name: dir.display().to_string(),
         message: format!("cannot create: {e}"),
     })?;
@@ -605,7 +605,7 @@ pub fn compare_hpt(
     let idx_of =
         |s: &str| -> Vec<usize> { (0..rows.len()).filter(|&i| rows[i].series == s).collect() };
     if let Some(dir) = plots {
-        std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
+        crate::cleanup::create_dir_all(dir).map_err(|e| CreepError::Config {
             source_name: dir.display().to_string(),
             message: e.to_string(),
         })?;
