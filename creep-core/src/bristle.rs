@@ -225,8 +225,8 @@ pub fn lp_mean(lp0: f64, lp1: f64, lp_sqrt: f64, lam: f64, cold: bool) -> f64 {
         let u = GL4_X.map(|x| u0 + (1.0 - u0) * x);
         let arg = |u: f64| -(c * u + (k - c) * u * u);
         // the four exponentials by pairs (inlined polynomial, within 1e-15 of exp)
-        let (e0, e1) = crate::material::exp_pair(arg(u[0]), arg(u[1]));
-        let (e2, e3) = crate::material::exp_pair(arg(u[2]), arg(u[3]));
+        let (e0, e1) = crate::fastexp::exp_pair(arg(u[0]), arg(u[1]));
+        let (e2, e3) = crate::fastexp::exp_pair(arg(u[2]), arg(u[3]));
         let w = GL4_W;
         let sum = w[0] * 2.0 * u[0] * e0
             + w[1] * 2.0 * u[1] * e1

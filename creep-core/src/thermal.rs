@@ -106,7 +106,7 @@ impl Kernel {
     }
 
     /// Decay factors exp(-s_k h) and increments (1 - exp(-s_k h))/s_k for a sub-step `h`.
-    /// Two terms at a time by [`crate::material::exp_m1_pair`] (exp and exp_m1 within 1e-15
+    /// Two terms at a time by [`crate::fastexp::exp_m1_pair`] (exp and exp_m1 within 1e-15
     /// of the C library's, inlined).
     pub fn step_factors(&self, h: f64) -> ([f64; N_KERNEL], [f64; N_KERNEL]) {
         let mut decay = [1.0; N_KERNEL];
@@ -116,7 +116,7 @@ impl Kernel {
         while k < N_KERNEL {
             let k2 = (k + 1).min(N_KERNEL - 1);
             let (x1, x2) = (self.rates[k] * h, self.rates[k2] * h);
-            let ((d1, m1), (d2, m2)) = crate::material::exp_m1_pair(-x1, -x2);
+            let ((d1, m1), (d2, m2)) = crate::fastexp::exp_m1_pair(-x1, -x2);
             decay[k] = d1;
             gain[k] = -m1 / self.rates[k];
             decay[k2] = d2;

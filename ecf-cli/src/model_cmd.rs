@@ -1,37 +1,22 @@
 //! The model commands of `ecf`: `curve`, `step`, `sine`, `field` and `info`, each writing its CSV (or text) into the output buffer.
 
-use clap::{Args, ValueEnum};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::Args;
 use creep_core::commands::{self, bad, check_step_count, field_of, rename, ModelSetup};
-use creep_core::engine::Scheme;
+use creep_core::scheme::{Scheme, SCHEMES};
 use creep_core::tolerance;
 use creep_core::{CreepError, FieldPoint, Outputs};
 use std::io::Write;
 use std::path::PathBuf;
 
-/// How a time step advances the bristles (`creep_core::engine::Scheme`, docs/model.md
-/// section 3).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub(crate) enum SchemeArg {
-    /// Cell by cell: the first-order reference, independent of the time step within 0.5 %
-    Cells,
-    /// Continuous sub-steps of up to 8 cells: 2-4x faster on 80x21 at 0.1-1 ms steps, its
-    /// dependence on the time step up to about 1 %
-    Continuous,
-    /// Cell by cell with higher-order rules along each move (docs/model.md section 3.3):
-    /// about twice the cost of cells on the same grid, more accurate at equal cost; ECF's
-    /// default
-    CellsHo,
-}
-
-impl SchemeArg {
-    /// The engine's scheme of a name (`cells` is [`Scheme::CellsMarch`]).
-    fn scheme(self) -> Scheme {
-        match self {
-            SchemeArg::Cells => Scheme::CellsMarch,
-            SchemeArg::Continuous => Scheme::Continuous,
-            SchemeArg::CellsHo => Scheme::CellsHigher,
-        }
-    }
+/// The `--scheme` values: the rows of the scheme table (`steady`: only the schemes that change
+/// a steady state), each with its help line.
+fn scheme_parser(steady: bool) -> impl TypedValueParser<Value = Scheme> {
+    let values = SCHEMES
+        .iter()
+        .filter(move |r| r.steady || !steady)
+        .map(|r| PossibleValue::new(r.name).help(r.help));
+    PossibleValuesParser::new(values).try_map(|s| Scheme::by_name(&s).ok_or("not a scheme"))
 }
 
 #[derive(Args, Clone)]
@@ -40,26 +25,15 @@ pub(crate) struct TransientArgs {
     /// cells-ho (higher-order rules along each move; see docs/model.md sections 3 and 9).
     /// Default: the scheme --tol chooses, else the configuration's (cells-ho for ECF, cells
     /// for FASTSIM, unless --config names another)
-    #[arg(long, value_enum)]
-    scheme: Option<SchemeArg>,
+    #[arg(long, value_parser = scheme_parser(false))]
+    scheme: Option<Scheme>,
 }
 
 impl TransientArgs {
     /// The scheme given explicitly, if any.
     fn explicit(&self) -> Option<Scheme> {
-        self.scheme.map(SchemeArg::scheme)
+        self.scheme
     }
-}
-
-/// The schemes of a steady computation: the steady state is the cells' march, which the
-/// higher-order rules change (the continuous scheme's steady state is the cells march).
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum SteadySchemeArg {
-    /// Cell by cell (the first-order reference; FASTSIM's default)
-    Cells,
-    /// Cell by cell with the higher-order rules along each move (docs/model.md section 3.3;
-    /// ECF's default)
-    CellsHo,
 }
 
 #[derive(Args, Clone)]
@@ -68,20 +42,14 @@ pub(crate) struct SteadyArgs {
     /// each move; docs/model.md section 3.3). Default: the scheme --tol chooses among
     /// these two, else the configuration's (cells-ho for ECF, cells for FASTSIM, unless
     /// --config names another)
-    #[arg(long, value_enum)]
-    scheme: Option<SteadySchemeArg>,
+    #[arg(long, value_parser = scheme_parser(true))]
+    scheme: Option<Scheme>,
 }
 
 impl SteadyArgs {
     /// The scheme given explicitly, if any.
     fn explicit(&self) -> Option<Scheme> {
-        self.scheme.map(|s| {
-            match s {
-                SteadySchemeArg::Cells => SchemeArg::Cells,
-                SteadySchemeArg::CellsHo => SchemeArg::CellsHo,
-            }
-            .scheme()
-        })
+        self.scheme
     }
 }
 
