@@ -226,8 +226,14 @@ pub fn guid() -> String {
 }
 
 fn guid_of(body: &str) -> String {
+    hash_id("ecf_contact", body)
+}
+
+/// A GUID-shaped identifier of `body`: two FNV-1a hashes, the second of `salt`, the first
+/// hash and the body (the FMI 2.0 GUID and the FMI 3.0 instantiation token, each its salt).
+pub(crate) fn hash_id(salt: &str, body: &str) -> String {
     let h1 = fnv1a(body.as_bytes());
-    let h2 = fnv1a(format!("ecf_contact/{h1:016x}/{body}").as_bytes());
+    let h2 = fnv1a(format!("{salt}/{h1:016x}/{body}").as_bytes());
     format!(
         "{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}",
         h1 >> 32,

@@ -2,7 +2,7 @@
 
 use crate::arrays::{self, ARRAYS, N_FIELD_MAX, VR_N_FIELD, VR_TIME};
 use crate::model_description::{
-    common_elements, fnv1a, value_attributes, xml_escape, MODEL_IDENTIFIER,
+    common_elements, hash_id, value_attributes, xml_escape, MODEL_IDENTIFIER,
 };
 use crate::vars::{self, Causality, Kind, Start, Var};
 use std::fmt::Write;
@@ -128,16 +128,7 @@ fn body(table: &[Var]) -> String {
 }
 
 fn token_of(body: &str) -> String {
-    let h1 = fnv1a(body.as_bytes());
-    let h2 = fnv1a(format!("ecf_contact/fmi3/{h1:016x}/{body}").as_bytes());
-    format!(
-        "{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}",
-        h1 >> 32,
-        (h1 >> 16) & 0xffff,
-        h1 & 0xffff,
-        h2 >> 48,
-        h2 & 0xffff_ffff_ffff
-    )
+    hash_id("ecf_contact/fmi3", body)
 }
 
 /// The instantiation token of this build: a hash of the FMI 3.0 model description without it.
