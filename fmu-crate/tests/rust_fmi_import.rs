@@ -1,7 +1,7 @@
 //! A second, independent importer: the rust-fmi `fmi` crate loads the packed .fmu (dist/ecf_contact.fmu from scripts/build-fmu.sh, or $ECF_FMU_PATH), steps it, and matches the core library.
 
 mod common;
-use creep_core::{Config, Grid, Inputs, Model};
+use creep_core::{Config, Grid, Model};
 use fmi::fmi2::import::Fmi2Import;
 use fmi::fmi2::instance::{CoSimulation, Common};
 use fmi::traits::FmiImport;
@@ -57,15 +57,7 @@ fn rust_fmi_loads_steps_and_matches_the_core_library() {
     cfg.grid = Grid { nx: 20, ny: 7 };
     let mut core = Model::new(&cfg).unwrap();
 
-    let input = |k: usize| Inputs {
-        cx: 0.003 + 0.004 * k as f64,
-        cy: 0.0,
-        spin: 0.05 * k as f64,
-        v: 15.0,
-        fn_n: 100e3 + 1e3 * k as f64,
-        t_bulk: 25.0,
-    };
-    let arr = |i: &Inputs| [i.cx, i.cy, i.spin, i.v, i.fn_n, i.t_bulk];
+    let (input, arr) = (common::importer_inputs, common::input_values);
     inst.set_real(&vin, &arr(&input(0))).expect("inputs");
     inst.setup_experiment(None, 0.0, None).expect("setup");
     inst.enter_initialization_mode().expect("enter init");

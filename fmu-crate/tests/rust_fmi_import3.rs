@@ -7,7 +7,7 @@
 //! states are tested through fmpy and the C driver.
 
 mod common;
-use creep_core::{Config, Grid, Inputs, Model};
+use creep_core::{Config, Grid, Model};
 use ecf_contact::arrays::{self, ARRAYS};
 use fmi::fmi3::import::Fmi3Import;
 use fmi::fmi3::Fmi3Model;
@@ -91,15 +91,7 @@ fn rust_fmi_loads_the_fmi3_fmu_steps_and_matches_the_core_library() {
     let mut cfg = Config::preset("table4.1").unwrap();
     cfg.grid = Grid { nx: 20, ny: 7 };
     let mut core = Model::new(&cfg).unwrap();
-    let input = |k: usize| Inputs {
-        cx: 0.003 + 0.004 * k as f64,
-        cy: 0.0,
-        spin: 0.05 * k as f64,
-        v: 15.0,
-        fn_n: 100e3 + 1e3 * k as f64,
-        t_bulk: 25.0,
-    };
-    let arr = |i: &Inputs| [i.cx, i.cy, i.spin, i.v, i.fn_n, i.t_bulk];
+    let (input, arr) = (common::importer_inputs, common::input_values);
     inst.set_float64(&vin, &arr(&input(0))).expect("inputs");
     inst.enter_initialization_mode(None, 0.0, None)
         .expect("enter init");

@@ -297,3 +297,21 @@ pub fn for_fmi_schema(xml: &str) -> String {
     }
     out
 }
+
+/// The inputs of step `k` of the importer tests (rust-fmi, FMI 2.0 and 3.0): creepage, spin
+/// and load rising with k at 15 m/s.
+pub fn importer_inputs(k: usize) -> creep_core::Inputs {
+    creep_core::Inputs {
+        cx: 0.003 + 0.004 * k as f64,
+        cy: 0.0,
+        spin: 0.05 * k as f64,
+        v: 15.0,
+        fn_n: 100e3 + 1e3 * k as f64,
+        t_bulk: 25.0,
+    }
+}
+
+/// `i` in the order of the FMU's inputs: cx, cy, spin, v, F_N, T_bulk.
+pub fn input_values(i: &creep_core::Inputs) -> [f64; 6] {
+    [i.cx, i.cy, i.spin, i.v, i.fn_n, i.t_bulk]
+}
