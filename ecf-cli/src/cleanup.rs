@@ -36,16 +36,21 @@ fn remove(p: &Path) {
         p.to_path_buf()
     };
     for _ in 0..5 {
-        let _ = if gone.is_dir() {
-            std::fs::remove_dir_all(&gone)
-        } else {
-            std::fs::remove_file(&gone)
-        };
+        remove_once(&gone);
         if !gone.exists() {
             return;
         }
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
+}
+
+/// Removes the folder or file `p`, if it is there (errors ignored: nothing to do then).
+fn remove_once(p: &Path) {
+    let _ = if p.is_dir() {
+        std::fs::remove_dir_all(p)
+    } else {
+        std::fs::remove_file(p)
+    };
 }
 
 /// `std::fs::create_dir_all`, never while an interrupt is removing the pending paths (it
@@ -88,10 +93,6 @@ impl Pending {
 impl Drop for Pending {
     fn drop(&mut self) {
         self.forget();
-        let _ = if self.0.is_dir() {
-            std::fs::remove_dir_all(&self.0)
-        } else {
-            std::fs::remove_file(&self.0)
-        };
+        remove_once(&self.0);
     }
 }
