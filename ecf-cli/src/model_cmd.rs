@@ -145,6 +145,12 @@ pub(crate) struct ModelArgs {
     /// grid)
     #[arg(long, value_parser = parse_tol)]
     tol: Option<f64>,
+    /// How the local temperature of each bristle move is solved: exact (the implicit solve
+    /// to its tolerance, the reference) or predictor (a predictor-corrector in two
+    /// evaluations of the material law, within 0.02 % of exact on the accuracy benchmark;
+    /// docs/model.md section 9). Default: the configuration's
+    #[arg(long, value_enum)]
+    temperature_solve: Option<crate::TemperatureSolveArg>,
     /// Lateral creepage, dimensionless
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     cy: f64,
@@ -561,6 +567,9 @@ impl ModelArgs {
         }
         if let Some(g) = &self.grid {
             cfg.grid = Grid::parse(g)?;
+        }
+        if let Some(s) = self.temperature_solve {
+            cfg.temperature_solve = s.solve();
         }
         if !(self.v_mps.is_finite() && self.v_mps.abs() <= 1000.0) {
             return Err(bad("--v-mps", self.v_mps, "must be finite, within [-1000, 1000] m/s (negative: rolling backwards; standstill v = 0: forces from creepage alone, no frictional heat)"));

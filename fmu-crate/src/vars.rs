@@ -547,6 +547,7 @@ pub fn default_config() -> Config {
         bound: creep_core::Bound::Elliptic,
         grid: creep_core::config::DEFAULT_GRID,
         scheme: creep_core::engine::Scheme::default_for(creep_core::ModelKind::Ecf),
+        temperature_solve: Default::default(),
         geometry: DEFAULT_GEOMETRY,
         modifiers: Vec::new(),
     })

@@ -185,6 +185,11 @@ pub struct Contact {
     /// Temperature tolerance of the local solve, K ([`thermal::temperature_tolerance`] of the
     /// largest temperature coefficient).
     t_tol: f64,
+    /// How the local temperature of a move is solved ([`thermal::TemperatureSolve`]).
+    t_solve: thermal::TemperatureSolve,
+    /// The predictor's miss (K) above which the predictor-corrector takes a third
+    /// evaluation ([`thermal::pc_miss`] of the largest temperature coefficient).
+    pc_miss: f64,
     /// Pressure parts of the lattice nodes per strip, for the peak pressure in `np_cache_p0`.
     np_cache: Vec<Vec<crate::material::NodeP>>,
     np_cache_p0: Vec<f64>,
@@ -304,10 +309,15 @@ impl Contact {
             mirrored_unknown: false,
             node_acc_zero: true,
             mirror_strips: true,
+            t_solve: cfg.temperature_solve,
             t_tol: {
                 let r = Resolved::from_config(cfg);
                 let cmax = r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t);
                 thermal::temperature_tolerance(cmax)
+            },
+            pc_miss: {
+                let r = Resolved::from_config(cfg);
+                thermal::pc_miss(r.tc1_t.max(r.tc2_t).max(r.lp_t).max(r.le_t))
             },
         };
         for path in FastPath::ALL {
@@ -653,6 +663,17 @@ impl Contact {
     /// How a step advances the bristles.
     pub fn scheme(&self) -> Scheme {
         self.scheme
+    }
+
+    /// Sets how the local temperature of a bristle move is solved (the configuration's
+    /// `temperature_solve` at construction).
+    pub fn set_temperature_solve(&mut self, solve: thermal::TemperatureSolve) {
+        self.t_solve = solve;
+    }
+
+    /// How the local temperature of a bristle move is solved.
+    pub fn temperature_solve(&self) -> thermal::TemperatureSolve {
+        self.t_solve
     }
 
     /// Grid size (nx, ny actually used; a line contact has one strip).
