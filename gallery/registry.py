@@ -1,7 +1,7 @@
 """All gallery figures, in README order."""
 from __future__ import annotations
 
-from . import figs_drivetrain, figs_material, figs_steady, figs_transient, figs_twindisc
+from . import figs_drivetrain, figs_fmu, figs_material, figs_steady, figs_transient, figs_twindisc
 
 SECTIONS = [
     ("steady", "Quasi-steady results (seed Sec. 4.4, 6.1)"),
@@ -11,8 +11,8 @@ SECTIONS = [
     ("notes", "Numerical notes"),
 ]
 
-FIGURES = (figs_steady.FIGURES + figs_transient.FIGURES + figs_material.FIGURES + figs_drivetrain.FIGURES
-           + figs_twindisc.FIGURES + figs_transient.NOTES)
+FIGURES = (figs_steady.FIGURES + figs_transient.FIGURES + figs_fmu.FIGURES + figs_material.FIGURES
+           + figs_drivetrain.FIGURES + figs_twindisc.FIGURES + figs_transient.NOTES)
 
 # figures whose producer belongs to another part of the project and may not be ready:
 # when they fail, the gallery marks them pending with the reason instead of failing.

@@ -1,16 +1,23 @@
 #!/usr/bin/env bash
-# Builds the ecf_contact FMU for linux64, win64 and darwin64 and packs dist/ecf_contact.fmu; the last line of output is its path.
+# Builds the ecf_contact FMUs, FMI 2.0 (dist/ecf_contact.fmu: linux64, win64, darwin64) and FMI 3.0
+# (dist/ecf_contact_fmi3.fmu: x86_64-linux, x86_64-windows, x86_64-darwin, aarch64-darwin,
+# aarch64-linux), from one library per platform that exports both APIs; the last two lines of
+# output are the paths of the FMI 3.0 and the FMI 2.0 FMU (the last).
 #
 # binaries/linux64/ecf_contact.so     x86_64 Linux, glibc >= 2.17 (cargo-zigbuild)
 # binaries/win64/ecf_contact.dll      x86_64 Windows (MinGW-w64), no MinGW runtime DLL needed
 # binaries/darwin64/ecf_contact.dylib macOS >= 11, universal (x86_64 + arm64, arm64 signed ad hoc)
-# `--linux-only` (or ECF_FMU_LINUX_ONLY=1) builds and packs linux64 alone, for a user in a hurry.
+# The FMI 3.0 FMU holds the same libraries in its platform-tuple folders (the darwin64 slices
+# each in its own: x86_64-darwin, aarch64-darwin), plus binaries/aarch64-linux/ecf_contact.so
+# (ARM64 Linux, glibc >= 2.17, cargo-zigbuild with the standard library built from source).
+# `--linux-only` (or ECF_FMU_LINUX_ONLY=1) builds and packs (x86_64) linux alone, for a user in a hurry.
 #
 # Windows and macOS are cross-built here with Debian's Rust (rustc-web), which builds their
 # standard library from source (-Zbuild-std, once per target: target/cross/) because rustup's
 # targets cannot be downloaded; scripts/cross/ holds the two linker wrappers and says why.
-# Checks on each binary: exactly the 44 fmi2* functions exported (nm / objdump / llvm-nm);
-# linux64: no glibc symbol version newer than 2.17 and only base-system libraries (ldd);
+# Checks on each binary: exactly the 44 fmi2* and 75 fmi3* functions exported (nm / objdump /
+# llvm-nm); linux64 and aarch64-linux: no glibc symbol version newer than 2.17; linux64: only
+# base-system libraries (ldd);
 # win64: PE32+ x86-64, imports only Windows system DLLs; darwin64: both architectures, only
 # /usr/lib/libSystem linked, minimum macOS 11.0, install name @rpath/ecf_contact.dylib, the arm64
 # slice signed. Needs: cargo, the apt packages of scripts/setup.sh (installed here when missing),
@@ -20,8 +27,9 @@
 # Binaries for further platforms, built elsewhere, are packed beside them: `--binary
 # win32=PATH/ecf_contact.dll` (repeatable; also ECF_FMU_EXTRA_BINARIES="win32=..."); a win64 or
 # darwin64 given so replaces the one built here. Each is checked for the platform's file format
-# (PE / Mach-O / ELF) and stored as binaries/<platform>/ecf_contact.<ext>.
-# ECF_FMU_OUT=PATH writes the FMU elsewhere than dist/ecf_contact.fmu.
+# (PE / Mach-O / ELF) and stored as binaries/<platform>/ecf_contact.<ext> of the FMI 2.0 FMU.
+# ECF_FMU_OUT=PATH writes the FMI 2.0 FMU elsewhere than dist/ecf_contact.fmu, the FMI 3.0 FMU
+# beside it (ecf_contact_fmi3.fmu in the same folder).
 #
 # Your own Rust effects, without forking the project: `--effects PATH/TO/CRATE` links a crate
 # that registers effects with creep_core::register_effect! (example: examples/user-effect)
@@ -35,6 +43,9 @@ ID=ecf_contact
 TARGET=x86_64-unknown-linux-gnu
 GLIBC_MAX=2.17
 OUT="${ECF_FMU_OUT:-$ROOT/dist/$ID.fmu}"
+# the number of functions of each API the libraries export (fmi2Functions.h, fmi3Functions.h)
+N_FMI2=44
+N_FMI3=75
 
 EXTRA=()
 EFFECTS=""
@@ -192,12 +203,20 @@ if [ -n "$bad" ]; then
   exit 1
 fi
 echo "build-fmu: ldd: $(ldd "$SO" | awk '{print $1}' | tr '\n' ' ')" >&2
-extra=$(nm -D --defined-only "$SO" | awk '{print $3}' | grep -v '^fmi2' || true)
-nexp=$(nm -D --defined-only "$SO" | awk '{print $3}' | grep -c '^fmi2' || true)
-if [ -n "$extra" ] || [ "$nexp" != 44 ]; then
-  echo "build-fmu: exports: $nexp fmi2* functions (want 44), others: $extra" >&2
-  exit 1
-fi
+# exports(LIST, WHAT): the exported names (one a line, macOS's leading _ removed) are exactly
+# the N_FMI2 fmi2* and N_FMI3 fmi3* functions
+exports() {
+  local names n2 n3 other
+  names=$(sed 's/^_//' <<<"$1")
+  n2=$(grep -c '^fmi2' <<<"$names" || true)
+  n3=$(grep -c '^fmi3' <<<"$names" || true)
+  other=$(grep -Ev '^fmi[23]' <<<"$names" | head -5 | xargs || true)
+  if [ "$n2" != "$N_FMI2" ] || [ "$n3" != "$N_FMI3" ] || [ -n "$other" ]; then
+    echo "build-fmu: $2 exports $n2 fmi2* (want $N_FMI2) and $n3 fmi3* (want $N_FMI3) functions, others: $other" >&2
+    exit 1
+  fi
+}
+exports "$(nm -D --defined-only "$SO" | awk '{print $3}')" "linux64"
 
 # --- win64 and darwin64: cross builds with Debian's Rust and -Zbuild-std -----------------
 WIN_DLL=""
@@ -231,6 +250,10 @@ if [ "$LINUX_ONLY" != 1 ]; then
       *-windows-gnu)
         env "${e[@]}" "CARGO_TARGET_${u}_LINKER=$ROOT/scripts/cross/link-mingw.sh" \
           "BINDGEN_EXTRA_CLANG_ARGS_$t=-I$CLANG_RES" /usr/bin/cargo build "${c[@]}" >&2 ;;
+      aarch64-unknown-linux-gnu)
+        # zig's glibc headers of the target for bindgen (fmi-sys), as for linux64 above
+        env "${e[@]}" "BINDGEN_EXTRA_CLANG_ARGS_$t=-nostdinc -isystem $CLANG_RES -isystem $Z/libc/include/aarch64-linux-gnu -isystem $Z/libc/include/generic-glibc -isystem $Z/libc/include/aarch64-linux-any -isystem $Z/libc/include/any-linux-any" \
+          /usr/bin/cargo zigbuild --release ${MAN[@]+"${MAN[@]}"} "${PKG[@]}" --target "$t.$GLIBC_MAX" -Zbuild-std=std,panic_unwind >&2 ;;
       *-apple-darwin)
         env "${e[@]}" "CARGO_TARGET_${u}_LINKER=$ROOT/scripts/cross/link-darwin.sh" \
           "CARGO_TARGET_${u}_RUSTFLAGS=-C linker-flavor=ld64.lld" SDKROOT="$SDK" \
@@ -244,14 +267,12 @@ if [ "$LINUX_ONLY" != 1 ]; then
   fmt=$(x86_64-w64-mingw32-objdump -f "$WIN_DLL" | sed -n 's/.*file format //p')
   [ "$fmt" = pei-x86-64 ] || { echo "build-fmu: $WIN_DLL is '$fmt', not PE32+ x86-64" >&2; exit 1; }
   wexp=$(x86_64-w64-mingw32-objdump -p "$WIN_DLL" | sed -n '/\[Ordinal\/Name Pointer\] Table/,/^$/p' | awk '/^[[:space:]]*\[ *[0-9]+\]/ {print $NF}')
-  if [ "$(echo "$wexp" | grep -c '^fmi2')" != 44 ] || echo "$wexp" | grep -qv '^fmi2'; then
-    echo "build-fmu: $WIN_DLL exports (want exactly 44 fmi2*): $(echo $wexp)" >&2; exit 1
-  fi
+  exports "$wexp" "win64 ($WIN_DLL)"
   wimp=$(x86_64-w64-mingw32-objdump -p "$WIN_DLL" | sed -n 's/^\s*DLL Name: //p' | sort -fu)
   # Windows system DLLs only: no libgcc_s_seh, libwinpthread or libstdc++ beside the FMU
   wbad=$(echo "$wimp" | grep -Eiv '^(kernel32|msvcrt|ntdll|userenv|ws2_32|bcryptprimitives|advapi32|api-ms-win-[a-z0-9-]+)\.dll$' || true)
   [ -z "$wbad" ] || { echo "build-fmu: $WIN_DLL imports DLLs outside the Windows system: $wbad" >&2; exit 1; }
-  echo "build-fmu: win64: PE32+ x86-64, 44 fmi2* exports, imports $(echo $wimp)" >&2
+  echo "build-fmu: win64: PE32+ x86-64, $N_FMI2 fmi2* and $N_FMI3 fmi3* exports, imports $(echo $wimp)" >&2
 
   cross x86_64-apple-darwin
   cross aarch64-apple-darwin
@@ -264,10 +285,7 @@ if [ "$LINUX_ONLY" != 1 ]; then
   for arch in x86_64 arm64; do
     slice="$XDIR/darwin64/$arch.dylib"
     llvm-lipo-22 -thin "$arch" -output "$slice" "$MAC_DYLIB"
-    mexp=$(llvm-nm-22 -gU --defined-only "$slice" | awk '{print $NF}')
-    if [ "$(echo "$mexp" | grep -c '^_fmi2')" != 44 ] || echo "$mexp" | grep -qv '^_fmi2'; then
-      echo "build-fmu: darwin64 $arch exports (want exactly 44 _fmi2*): $(echo $mexp | head -c 400)" >&2; exit 1
-    fi
+    exports "$(llvm-nm-22 -gU --defined-only "$slice" | awk '{print $NF}')" "darwin64 $arch"
     load=$(llvm-otool-22 -L "$slice" | tail -n +2 | awk '{print $1}')
     [ "$load" = "$(printf '@rpath/ecf_contact.dylib\n/usr/lib/libSystem.B.dylib')" ] || {
       echo "build-fmu: darwin64 $arch: install name and libraries: $(echo $load) (want @rpath/ecf_contact.dylib /usr/lib/libSystem.B.dylib)" >&2; exit 1; }
@@ -279,31 +297,67 @@ if [ "$LINUX_ONLY" != 1 ]; then
       echo "build-fmu: darwin64 arm64 slice is not signed (Apple silicon refuses it)" >&2; exit 1
     fi
   done
-  echo "build-fmu: darwin64: universal ($archs), 44 _fmi2* exports each, only libSystem, macOS >= $minos, arm64 signed ad hoc" >&2
+  echo "build-fmu: darwin64: universal ($archs), $N_FMI2 _fmi2* and $N_FMI3 _fmi3* exports each, only libSystem, macOS >= $minos, arm64 signed ad hoc" >&2
+
+  # aarch64-linux (FMI 3.0 only: FMI 2.0 names no ARM platform)
+  cross aarch64-unknown-linux-gnu
+  ARM_SO="$XDIR/aarch64-unknown-linux-gnu/release/lib$LIBNAME.so"
+  [ -f "$ARM_SO" ] || { echo "build-fmu: $ARM_SO not found" >&2; exit 1; }
+  afmt=$(llvm-objdump-22 -f "$ARM_SO" | sed -n 's/.*file format //p')
+  [ "$afmt" = elf64-littleaarch64 ] || { echo "build-fmu: $ARM_SO is '$afmt', not elf64-littleaarch64" >&2; exit 1; }
+  exports "$(llvm-nm-22 -D --defined-only "$ARM_SO" | awk '{print $NF}')" "aarch64-linux"
+  anewest=$(llvm-objdump-22 -T "$ARM_SO" | grep -o 'GLIBC_[0-9][0-9.]*' | sed 's/GLIBC_//' | sort -V | tail -1)
+  if [ -n "$anewest" ] && [ "$(printf '%s\n%s\n' "$anewest" "$GLIBC_MAX" | sort -V | tail -1)" != "$GLIBC_MAX" ]; then
+    echo "build-fmu: $ARM_SO needs GLIBC_$anewest > $GLIBC_MAX" >&2; exit 1
+  fi
+  aneeded=$(llvm-readelf-22 -d "$ARM_SO" | sed -n 's/.*Shared library: \[\(.*\)\]/\1/p' | xargs)
+  abad=$(tr ' ' '\n' <<<"$aneeded" | grep -Ev '^(libc\.so\.6|libm\.so\.6|libdl\.so\.2|libpthread\.so\.0|librt\.so\.1|libgcc_s\.so\.1|ld-linux-aarch64\.so\.1)$' || true)
+  [ -z "$abad" ] || { echo "build-fmu: $ARM_SO needs libraries outside the base system: $abad" >&2; exit 1; }
+  echo "build-fmu: aarch64-linux: ELF aarch64, $N_FMI2 fmi2* and $N_FMI3 fmi3* exports, glibc >= ${anewest:-any}, needs $aneeded" >&2
 fi
 
 # --- pack ----------------------------------------------------------------------------------
+OUT3="$(dirname "$OUT")/${ID}_fmi3.fmu"
 STAGE="$ROOT/target/fmu-stage/$ID"
-rm -rf "$STAGE"
+STAGE3="$ROOT/target/fmu-stage/${ID}_fmi3"
+rm -rf "$STAGE" "$STAGE3"
 mkdir -p "$STAGE/binaries/linux64" "$STAGE/resources/presets" "$STAGE/documentation" "$(dirname "$OUT")"
+mkdir -p "$STAGE3/binaries/x86_64-linux" "$STAGE3/resources/presets" "$STAGE3/documentation" "$STAGE3/terminalsAndIcons"
 cp modelDescription/modelDescription.xml "$STAGE/"
+cp modelDescription/fmi3/modelDescription.xml "$STAGE3/"
 cp "$SO" "$STAGE/binaries/linux64/$ID.so"
-if [ -n "$WIN_DLL" ]; then mkdir -p "$STAGE/binaries/win64"; cp "$WIN_DLL" "$STAGE/binaries/win64/$ID.dll"; fi
-if [ -n "$MAC_DYLIB" ]; then mkdir -p "$STAGE/binaries/darwin64"; cp "$MAC_DYLIB" "$STAGE/binaries/darwin64/$ID.dylib"; fi
+cp "$SO" "$STAGE3/binaries/x86_64-linux/$ID.so"
+if [ -n "$WIN_DLL" ]; then
+  mkdir -p "$STAGE/binaries/win64" "$STAGE3/binaries/x86_64-windows"
+  cp "$WIN_DLL" "$STAGE/binaries/win64/$ID.dll"
+  cp "$WIN_DLL" "$STAGE3/binaries/x86_64-windows/$ID.dll"
+fi
+if [ -n "$MAC_DYLIB" ]; then
+  mkdir -p "$STAGE/binaries/darwin64" "$STAGE3/binaries/x86_64-darwin" "$STAGE3/binaries/aarch64-darwin"
+  cp "$MAC_DYLIB" "$STAGE/binaries/darwin64/$ID.dylib"
+  # FMI 3.0 has a folder per architecture: the universal library's slices
+  cp "$XDIR/darwin64/x86_64.dylib" "$STAGE3/binaries/x86_64-darwin/$ID.dylib"
+  cp "$XDIR/darwin64/arm64.dylib" "$STAGE3/binaries/aarch64-darwin/$ID.dylib"
+fi
+if [ -n "${ARM_SO:-}" ]; then mkdir -p "$STAGE3/binaries/aarch64-linux"; cp "$ARM_SO" "$STAGE3/binaries/aarch64-linux/$ID.so"; fi
 cp creep-core/presets/*.json "$STAGE/resources/presets/"
+cp creep-core/presets/*.json "$STAGE3/resources/presets/"
 cp fmu-crate/assets/model.png "$STAGE/model.png"
+cp fmu-crate/assets/model.png "$STAGE3/terminalsAndIcons/icon.png"
 for b in ${EXTRA[@]+"${EXTRA[@]}"}; do
   plat=${b%%=*}; path=${b#*=}
   case "$plat" in win*) ext=dll ;; darwin*) ext=dylib ;; *) ext=so ;; esac
   mkdir -p "$STAGE/binaries/$plat"
   cp "$path" "$STAGE/binaries/$plat/$ID.$ext"
-  echo "build-fmu: packed $path as binaries/$plat/$ID.$ext" >&2
+  echo "build-fmu: packed $path as binaries/$plat/$ID.$ext (FMI 2.0 FMU)" >&2
 done
 # documentation/index.html: docs/fmu.md rendered to HTML (pulldown-cmark), the markdown beside it
 cp docs/fmu.md "$STAGE/documentation/"
 cargo run -q --release -p ecf-fmu --example render_doc -- docs/fmu.md "$STAGE/documentation/index.html" >&2
-rm -f "$OUT"
-python3 - "$STAGE" "$OUT" <<'PY'
+cp "$STAGE/documentation/"* "$STAGE3/documentation/"
+rm -f "$OUT" "$OUT3"
+for pair in "$STAGE=$OUT" "$STAGE3=$OUT3"; do
+python3 - "${pair%%=*}" "${pair#*=}" <<'PY'
 import os, sys, zipfile
 stage, out = sys.argv[1], sys.argv[2]
 with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
@@ -313,23 +367,26 @@ with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
             p = os.path.join(base, f)
             z.write(p, os.path.relpath(p, stage))
 PY
+done
 
-# --- smoke test: the binary accepts the packed modelDescription.xml (same GUID) -------------
-python3 - "$OUT" <<'PY' >&2
+# --- smoke test: the binary accepts the packed model descriptions (GUID, token) -------------
+python3 - "$OUT" "$OUT3" <<'PY' >&2
 import sys
 from fmpy import read_model_description, extract
 from fmpy.fmi2 import FMU2Slave
-fmu = sys.argv[1]
-md = read_model_description(fmu)
-d = extract(fmu)
-s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier, instanceName="smoke")
-try:
-    s.instantiate()
-except Exception as e:
-    sys.exit(f"build-fmu: the binary refuses modelDescription.xml ({e}); regenerate it: "
-             "ECF_FMU_WRITE_MD=1 cargo test -p ecf-fmu --test model_description")
-s.freeInstance()
-print("build-fmu: smoke test ok (instantiate with the packed GUID)")
+from fmpy.fmi3 import FMU3Slave
+for fmu, cls, what in ((sys.argv[1], FMU2Slave, "GUID"), (sys.argv[2], FMU3Slave, "instantiationToken")):
+    md = read_model_description(fmu)
+    d = extract(fmu)
+    token = md.guid if cls is FMU2Slave else md.instantiationToken
+    s = cls(guid=token, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier, instanceName="smoke")
+    try:
+        s.instantiate()
+    except Exception as e:
+        sys.exit(f"build-fmu: the binary refuses the modelDescription.xml of {fmu} ({e}); regenerate it: "
+                 "ECF_FMU_WRITE_MD=1 cargo test -p ecf-fmu --test model_description --test model_description3")
+    s.freeInstance()
+    print(f"build-fmu: smoke test ok ({md.fmiVersion}: instantiate with the packed {what})")
 PY
 if [ -n "$EFFECTS" ]; then
   # the ecf binary with the same effects (built for this machine, beside the project's own
@@ -337,6 +394,7 @@ if [ -n "$EFFECTS" ]; then
   cargo build --release "${MAN[@]}" -p ecf-with-effects >&2
   mkdir -p "$DEST"
   cp "target/release/ecf-with-$ELIB" "$DEST/ecf"
-  echo "build-fmu: with $EPKG: $DEST/ecf and $OUT" >&2
+  echo "build-fmu: with $EPKG: $DEST/ecf, $OUT and $OUT3" >&2
 fi
+echo "$OUT3"
 echo "$OUT"

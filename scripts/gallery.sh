@@ -31,7 +31,7 @@ fi
 
 echo "== gallery: build ecf CLI" >&2
 cargo build --release -q -p ecf-cli >&2
-echo "== gallery: contact FMU for the drive-train demo" >&2
+echo "== gallery: contact FMUs (the drive-train demo, the FMI 3.0 field arrays)" >&2
 bash scripts/build-fmu.sh >/dev/null
 bash scripts/setup-venv.sh
 echo "== gallery: compute and plot -> $out" >&2

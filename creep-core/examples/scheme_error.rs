@@ -31,7 +31,7 @@ fn main() {
         )
     };
     show("steady 80x21", &mk(80, 21).steady(&i).unwrap());
-    for (sch, name) in [(Scheme::Cells, "cells"), (Scheme::Continuous, "cont")] {
+    for (sch, name) in [(Scheme::CellsMarch, "cells"), (Scheme::Continuous, "cont")] {
         for h in [1e-6f64, 1e-5, 2e-5, 4e-5, 1e-4, 2.5e-4] {
             let mut c = mk(80, 21);
             c.set_scheme(sch);

@@ -159,7 +159,7 @@ pub struct Move {
 }
 
 /// How tau_c2 and L_p vary along a move under the higher-order rules
-/// ([`crate::engine::Scheme::CellsHigher`], docs/model.md section 9, step 8): tau_c2 linear
+/// ([`crate::engine::Scheme::CellsHigher`], docs/model.md section 3.3): tau_c2 linear
 /// from the start material's to the end material's, 1/L_p from the start's to the end's
 /// with its pressure part exponential in s and its temperature part along the move's
 /// temperature profile. NaN fields: the end material over the whole move (Eq. 4.7 as the
@@ -225,8 +225,8 @@ pub fn lp_mean(lp0: f64, lp1: f64, lp_sqrt: f64, lam: f64, cold: bool) -> f64 {
         let u = GL4_X.map(|x| u0 + (1.0 - u0) * x);
         let arg = |u: f64| -(c * u + (k - c) * u * u);
         // the four exponentials by pairs (inlined polynomial, within 1e-15 of exp)
-        let (e0, e1) = crate::material::exp_pair(arg(u[0]), arg(u[1]));
-        let (e2, e3) = crate::material::exp_pair(arg(u[2]), arg(u[3]));
+        let (e0, e1) = crate::fastexp::exp_pair(arg(u[0]), arg(u[1]));
+        let (e2, e3) = crate::fastexp::exp_pair(arg(u[2]), arg(u[3]));
         let w = GL4_W;
         let sum = w[0] * 2.0 * u[0] * e0
             + w[1] * 2.0 * u[1] * e1
@@ -564,7 +564,7 @@ fn same_characteristic(s: &mut BristleState, mv: &Move, dtau: [f64; 2], m: &Mate
 /// turns from the direction at the crossing to `dir` in proportion to the plastic remainder
 /// 1 - lam of the move: at lam -> 1 (the trial just reaches tau_c1) it is the elastic trial's
 /// direction, so the stress is continuous across the elastic/plastic boundary in the inputs
-/// (issue 24: a 0.46 MPa jump of tau_x, 0.1 N of F_x, where a bristle ends a move just past
+/// (without the turn: a 0.46 MPa jump of tau_x, 0.1 N of F_x, where a bristle ends a move just past
 /// tau_c1); at lam = 0 it is `dir`, as before. Only the crossing move's end state changes (the
 /// next move starts from |tau| along u): one bristle per strip, O(1/nx) of the forces.
 #[inline]

@@ -20,11 +20,13 @@
 
 pub mod bristle;
 pub mod bytes;
+pub mod commands;
 pub mod config;
 pub mod custom;
 pub mod effects;
 pub mod engine;
 pub mod error;
+pub(crate) mod fastexp;
 pub mod formula;
 pub mod hertz;
 pub mod kalker;
@@ -33,6 +35,7 @@ pub mod model;
 pub mod modifier;
 pub mod params;
 pub mod polach;
+pub mod scheme;
 pub mod state;
 pub mod thermal;
 pub mod tolerance;
@@ -48,3 +51,4 @@ pub use engine::{Contact, FieldPoint, Inputs, Outputs};
 pub use error::{CreepError, Result};
 pub use model::Model;
 pub use modifier::Modifier;
+pub use scheme::Scheme;

@@ -3,6 +3,7 @@
 use crate::bristle::{Material, Rule};
 use crate::config::{Bound, Config};
 use crate::effects::Effect;
+use crate::fastexp::{exp_fast, exp_pair};
 use crate::hertz::Patch;
 use crate::params::P;
 
@@ -16,37 +17,12 @@ use crate::params::P;
 /// fall as the layer is compressed, and the reverse as it heats.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Resolved {
-    /// Effect `coulomb`: FASTSIM's bound |tau| <= mu p replaces the layer's strengths
-    /// (tau_c1 = tau_c2 = mu p).
-    pub coulomb: bool,
-    /// Effect `voce_plasticity`: Voce hardening from tau_c1 to tau_c2 (Eq. 4.2); with neither
-    /// this nor `coulomb` the bristles are purely elastic (Kalker's linear theory).
-    pub plastic: bool,
-    /// Effect `layer_elasticity`: the layer's compliance L_e in series with the bodies'
-    /// (L_k + L_e, Eq. 4.21); off: L_e = 0.
-    pub layer_el: bool,
-    /// Effect `pressure_dependence`: the pressure factors of Eq. 4.3, 4.4 (off: 1).
-    pub pressure: bool,
-    /// Effect `temperature`: heat, flash temperature (Eq. 4.22-4.35) and the temperature
-    /// factors of Eq. 4.3, 4.4 (off: 1, bristles at the bulk temperature).
-    pub temperature: bool,
-    /// Effect `transient`: the bristle grid persists between steps (off: every step is the
-    /// quasi-steady state of its inputs).
-    pub transient: bool,
-    /// Effect `surface_time_flash`: Eq. 4.34 over the wheel surface's own time x / v_w.
-    pub surface_time: bool,
-    /// Unloading rule of the bristle law: elastic unloading with effect `elastic_unloading`
-    /// or `coulomb` (FASTSIM's radial return), else the seed's same characteristic.
-    pub rule: Rule,
-    /// Configuration `bound` = parabolic: the Coulomb bound follows Kalker's parabolic
-    /// pressure (same total force) instead of the elliptic Hertz pressure.
-    pub parabolic: bool,
+    /// The effect switches and the unloading rule.
+    pub on: Switches,
+    /// Wheel and rail: elastic and thermal properties.
+    pub bodies: Bodies,
     /// Coulomb friction coefficient mu of the bound |tau| <= mu p, -.
     pub mu: f64,
-    /// Shear modulus G of wheel and rail, Pa (Kalker's flexibilities L_x, L_y, L_s).
-    pub g: f64,
-    /// Poisson's ratio nu of wheel and rail, - (Kalker's coefficients).
-    pub nu: f64,
     /// L_e,0: inverted elastic stiffness of the layer at full compression and T0 (its
     /// minimum), m/Pa (Eq. 4.4).
     pub le0: f64,
@@ -78,6 +54,50 @@ pub(crate) struct Resolved {
     /// Reference temperature T0 of the material laws, degC (Eq. 4.3, 4.4; not the bulk
     /// temperature T_B, which is an input).
     pub t0: f64,
+    /// k_q: fraction of the work dissipated in the layer that becomes heat, - (Eq. 4.29): a
+    /// bristle's heat density (both bodies, before the partition) is
+    /// q = k_q tau . (du - du_e) / h, W/m^2, du_e the elastic part of its displacement
+    /// increment du over the sub-step h.
+    pub kq: f64,
+}
+
+/// The configuration's effect switches and rules the inner loop branches on ([`Resolved::on`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Switches {
+    /// Effect `coulomb`: FASTSIM's bound |tau| <= mu p replaces the layer's strengths
+    /// (tau_c1 = tau_c2 = mu p).
+    pub coulomb: bool,
+    /// Effect `voce_plasticity`: Voce hardening from tau_c1 to tau_c2 (Eq. 4.2); with neither
+    /// this nor `coulomb` the bristles are purely elastic (Kalker's linear theory).
+    pub plastic: bool,
+    /// Effect `layer_elasticity`: the layer's compliance L_e in series with the bodies'
+    /// (L_k + L_e, Eq. 4.21); off: L_e = 0.
+    pub layer_el: bool,
+    /// Effect `pressure_dependence`: the pressure factors of Eq. 4.3, 4.4 (off: 1).
+    pub pressure: bool,
+    /// Effect `temperature`: heat, flash temperature (Eq. 4.22-4.35) and the temperature
+    /// factors of Eq. 4.3, 4.4 (off: 1, bristles at the bulk temperature).
+    pub temperature: bool,
+    /// Effect `transient`: the bristle grid persists between steps (off: every step is the
+    /// quasi-steady state of its inputs).
+    pub transient: bool,
+    /// Effect `surface_time_flash`: Eq. 4.34 over the wheel surface's own time x / v_w.
+    pub surface_time: bool,
+    /// Unloading rule of the bristle law: elastic unloading with effect `elastic_unloading`
+    /// or `coulomb` (FASTSIM's radial return), else the seed's same characteristic.
+    pub rule: Rule,
+    /// Configuration `bound` = parabolic: the Coulomb bound follows Kalker's parabolic
+    /// pressure (same total force) instead of the elliptic Hertz pressure.
+    pub parabolic: bool,
+}
+
+/// Elastic and thermal properties of the wheel and the rail, SI ([`Resolved::bodies`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Bodies {
+    /// Shear modulus G of wheel and rail, Pa (Kalker's flexibilities L_x, L_y, L_s).
+    pub g: f64,
+    /// Poisson's ratio nu of wheel and rail, - (Kalker's coefficients).
+    pub nu: f64,
     /// Thermal conductivity lambda_w of the wheel, W/(m K) (heat partition Eq. 4.30, 4.31;
     /// flash factor sqrt(kappa_w)/(lambda_w sqrt(pi)) of Eq. 4.34).
     pub lambda_w: f64,
@@ -88,35 +108,38 @@ pub(crate) struct Resolved {
     pub lambda_r: f64,
     /// Thermal diffusivity kappa_r of the rail, m^2/s (Eq. 4.31, Péclet condition Eq. 4.33).
     pub kappa_r: f64,
-    /// k_q: fraction of the work dissipated in the layer that becomes heat, - (Eq. 4.29): a
-    /// bristle's heat density (both bodies, before the partition) is
-    /// q = k_q tau . (du - du_e) / h, W/m^2, du_e the elastic part of its displacement
-    /// increment du over the sub-step h.
-    pub kq: f64,
 }
 
 impl Resolved {
     pub(crate) fn from_config(c: &Config) -> Self {
         let p = &c.params;
         Resolved {
-            coulomb: c.has(Effect::Coulomb),
-            plastic: c.has(Effect::VocePlasticity),
-            layer_el: c.has(Effect::LayerElasticity),
-            pressure: c.has(Effect::PressureDependence),
-            temperature: c.has(Effect::Temperature),
-            transient: c.has(Effect::Transient),
-            surface_time: c.has(Effect::SurfaceTimeFlash),
-            // FASTSIM's clip onto the Coulomb bound is a radial return along the trial
-            // stress: the elastic-unloading rule with tau_c1 = tau_c2 = mu p.
-            rule: if c.has(Effect::ElasticUnloading) || c.has(Effect::Coulomb) {
-                Rule::ElasticUnloading
-            } else {
-                Rule::SameCharacteristic
+            on: Switches {
+                coulomb: c.has(Effect::Coulomb),
+                plastic: c.has(Effect::VocePlasticity),
+                layer_el: c.has(Effect::LayerElasticity),
+                pressure: c.has(Effect::PressureDependence),
+                temperature: c.has(Effect::Temperature),
+                transient: c.has(Effect::Transient),
+                surface_time: c.has(Effect::SurfaceTimeFlash),
+                // FASTSIM's clip onto the Coulomb bound is a radial return along the trial
+                // stress: the elastic-unloading rule with tau_c1 = tau_c2 = mu p.
+                rule: if c.has(Effect::ElasticUnloading) || c.has(Effect::Coulomb) {
+                    Rule::ElasticUnloading
+                } else {
+                    Rule::SameCharacteristic
+                },
+                parabolic: c.bound == Bound::Parabolic,
             },
-            parabolic: c.bound == Bound::Parabolic,
+            bodies: Bodies {
+                g: p.si(P::G),
+                nu: p.si(P::Nu),
+                lambda_w: p.si(P::LambdaW),
+                kappa_w: p.si(P::KappaW),
+                lambda_r: p.si(P::LambdaR),
+                kappa_r: p.si(P::KappaR),
+            },
             mu: p.si(P::Mu),
-            g: p.si(P::G),
-            nu: p.si(P::Nu),
             le0: p.si(P::Le0),
             le_p: p.si(P::LeP),
             le_t: p.si(P::LeT),
@@ -130,10 +153,6 @@ impl Resolved {
             tc2_p: p.si(P::Tc2P),
             tc2_t: p.si(P::Tc2T),
             t0: p.si(P::T0),
-            lambda_w: p.si(P::LambdaW),
-            kappa_w: p.si(P::KappaW),
-            lambda_r: p.si(P::LambdaR),
-            kappa_r: p.si(P::KappaR),
             kq: p.si(P::Kq),
         }
     }
@@ -144,7 +163,7 @@ impl Resolved {
     /// are multiplied by it, the compliances L_p, L_e divided.
     #[inline]
     pub(crate) fn pf(&self, p: f64, c: f64) -> f64 {
-        if !self.pressure || c.is_infinite() {
+        if !self.on.pressure || c.is_infinite() {
             1.0
         } else {
             let x = p * c;
@@ -162,7 +181,7 @@ impl Resolved {
     #[inline]
     fn pf_pair(&self, p: f64, c1: f64, c2: f64) -> (f64, f64) {
         let (x1, x2) = (p * c1, p * c2);
-        if self.pressure && x1 > 1e-3 && x2 > 1e-3 && x1.is_finite() && x2.is_finite() {
+        if self.on.pressure && x1 > 1e-3 && x2 > 1e-3 && x1.is_finite() && x2.is_finite() {
             let (e1, e2) = exp_pair(-x1, -x2);
             (1.0 - e1, 1.0 - e2)
         } else {
@@ -176,7 +195,7 @@ impl Resolved {
     /// are multiplied by it, the compliances divided.
     #[inline]
     pub(crate) fn tf(&self, t: f64, c: f64) -> f64 {
-        if !self.temperature || c == 0.0 {
+        if !self.on.temperature || c == 0.0 {
             1.0
         } else {
             (-(t - self.t0) * c).exp()
@@ -209,7 +228,7 @@ impl Resolved {
         } else {
             pt.p0 * (1.0 - rr).sqrt()
         };
-        let bound = if r.parabolic {
+        let bound = if r.on.parabolic {
             // Kalker's parabolic pressure with the same total force: 2 F_N/(pi a b) = 4/3 p0 for the
             // ellipse; 3 pi/8 p0 for the line contact.
             let k = if pt.line {
@@ -231,7 +250,7 @@ impl Resolved {
                 lp: 1.0,
             };
         }
-        let le = if r.layer_el {
+        let le = if r.on.layer_el {
             r.le0 / r.pf(p, r.le_p)
         } else {
             0.0
@@ -265,7 +284,7 @@ impl Resolved {
     #[inline(always)]
     pub(crate) fn material_base(&self, np: &NodeP, t: f64) -> Material {
         let r = self;
-        if r.coulomb {
+        if r.on.coulomb {
             let le = np.le / r.tf(t, r.le_t);
             return Material {
                 tc1: np.bound,
@@ -274,7 +293,7 @@ impl Resolved {
                 le,
             };
         }
-        if !r.plastic {
+        if !r.on.plastic {
             let le = np.le / r.tf(t, r.le_t);
             return Material {
                 tc1: f64::INFINITY,
@@ -291,7 +310,7 @@ impl Resolved {
                 le: 0.0,
             };
         }
-        let (tf1, tf2, tfp, tfe) = if r.temperature {
+        let (tf1, tf2, tfp, tfe) = if r.on.temperature {
             // equal coefficients share one exponential (Tab. 4.1 has three equal ones);
             // two different ones (the dry presets) are taken in one two-lane exponential
             let (tf1, tf2) = if r.tc2_t == r.tc1_t {
@@ -325,8 +344,8 @@ impl Resolved {
 
 impl Resolved {
     /// The temperature coefficient X (1/K) in the gain of the elastic-release loop that the
-    /// release weight theta bounds (docs/model.md, section 6): the largest coefficient of
-    /// the strengths a move's stress follows over its whole temperature rise.
+    /// release weight theta bounds (docs/model.md, section 6, "X in the gain"): the largest
+    /// coefficient of the strengths a move's stress follows over its whole temperature rise.
     /// * [`Rule::SameCharacteristic`] (the default): tau_c2's and L_p's. A move that crosses
     ///   the yield surface yields at tau_c1 of its heat history's temperature, fixed during
     ///   the temperature solve; tau_c1(T) enters only as the floor max(tau_c1(T), Voce) of a
@@ -334,7 +353,7 @@ impl Resolved {
     ///   ((tau_c1 - t_Voce) / (tau_c1 X_c1), a fraction of a kelvin) and so with bounded
     ///   release heat, as long as the gain of the ride stays below 1; a bristle that may
     ///   ride takes [`Self::release_t_riding`]. With tau_c1's coefficient in X for every move
-    ///   (the rule before issue 24 step 7),
+    ///   (an earlier rule; history: docs/history.md),
     ///   theta damped hardening and sliding bristles of dry (tau_c1 0.034 /K against tau_c2
     ///   0.0025 /K) and wet (0.55 against 0.0015 /K) by a weight that depends on the cell
     ///   length: the fine grids drifted (dry, 20 m/s, c_x 1.06 %: +1.8 % on 640 cells).
@@ -342,7 +361,7 @@ impl Resolved {
     ///   of a crossing starts at tau_c1(T), so tau_c1's coefficient too.
     #[inline]
     pub(crate) fn release_t(&self) -> f64 {
-        match self.rule {
+        match self.on.rule {
             Rule::SameCharacteristic => self.tc2_t.max(self.lp_t),
             Rule::ElasticUnloading => self.tc1_t.max(self.tc2_t).max(self.lp_t),
         }
@@ -353,7 +372,7 @@ impl Resolved {
     /// tau_c1's coefficient counts too. Without it, on short moves (dry: cells shorter than
     /// about 25 um) the gain of the ride passed 1 and the solve's only root was the elastic
     /// one at t_hist: the bristle left tau_c1 for one cell and yielded again higher
-    /// (docs/model.md, section 6 and section 9 step 10).
+    /// (docs/model.md, section 6, "Riding bristles").
     #[inline]
     pub(crate) fn release_t_riding(&self) -> f64 {
         self.release_t().max(self.tc1_t)
@@ -382,7 +401,7 @@ impl Resolved {
 /// the configuration's parameters and effects (Eq. 4.3, 4.4; formula effects not applied).
 pub fn layer_material(cfg: &Config, p: f64, t: f64) -> Material {
     let r = Resolved::from_config(cfg);
-    let le = if r.layer_el {
+    let le = if r.on.layer_el {
         r.le0 / r.pf(p, r.le_p) / r.tf(t, r.le_t)
     } else {
         0.0
@@ -394,129 +413,5 @@ pub fn layer_material(cfg: &Config, p: f64, t: f64) -> Material {
         tc2,
         lp: r.lp0 / r.pf(p, r.lp_p) / r.tf(t, r.lp_t),
         le,
-    }
-}
-
-/// (exp(a), exp(b)) in one two-lane evaluation (SSE2 on baseline x86-64, inlined): about
-/// 40 instructions where two calls to the C library's exp take about 100. exp(x) =
-/// 2^n exp(r), x = n ln 2 + r, |r| <= ln 2 / 2 (n rounded by the 1.5 * 2^52 shift), exp(r)
-/// by its Taylor polynomial to degree 13 (truncation below 1e-17; the constants and scheme
-/// of wide's `f64x2::exp`). Arguments outside +-700 take the scalar exp.
-#[inline(always)]
-pub(crate) fn exp_pair(a: f64, b: f64) -> (f64, f64) {
-    if !(a.abs() < 700.0 && b.abs() < 700.0) {
-        return (a.exp(), b.exp());
-    }
-    let (m, pow2) = exp_parts(a, b);
-    ((m[0] + 1.0) * pow2[0], (m[1] + 1.0) * pow2[1])
-}
-
-/// ((exp(a), exp(a) - 1), (exp(b), exp(b) - 1)) by [`exp_pair`]'s polynomial: where n = 0
-/// (|x| < ln 2 / 2) exp(x) - 1 is the polynomial without its constant term, free of
-/// cancellation; elsewhere |exp(x) - 1| > 0.29 and exp(x) - 1 loses at most 2 bits. The
-/// relative error of exp(x) - 1 is below 1e-15 (tested). Arguments outside +-700 take the
-/// C library's exp and exp_m1.
-#[inline(always)]
-pub(crate) fn exp_m1_pair(a: f64, b: f64) -> ((f64, f64), (f64, f64)) {
-    if !(a.abs() < 700.0 && b.abs() < 700.0) {
-        return ((a.exp(), a.exp_m1()), (b.exp(), b.exp_m1()));
-    }
-    let (m, pow2) = exp_parts(a, b);
-    let one = |i: usize| {
-        let e = (m[i] + 1.0) * pow2[i];
-        (e, if pow2[i] == 1.0 { m[i] } else { e - 1.0 })
-    };
-    (one(0), one(1))
-}
-
-/// The shared part of [`exp_pair`] and [`exp_m1_pair`] for |a|, |b| < 700: exp(r) - 1 and
-/// 2^n per lane.
-#[inline(always)]
-fn exp_parts(a: f64, b: f64) -> ([f64; 2], [f64; 2]) {
-    use wide::f64x2;
-    const SHIFT: f64 = 6755399441055744.0; // 1.5 * 2^52
-    const LN2_HI: f64 = 0.693145751953125; // few mantissa bits: n LN2_HI is exact
-    const LN2_LO: f64 = 1.428_606_820_309_417_2e-6;
-    let c = |k: f64| f64x2::splat(k);
-    let x = f64x2::new([a, b]);
-    let t = x * c(std::f64::consts::LOG2_E) + c(SHIFT);
-    let n = t - c(SHIFT);
-    let r = x - n * c(LN2_HI) - n * c(LN2_LO);
-    // exp(r) - 1 = r + r^2/2! + ... + r^13/13! (Estrin)
-    let f = |k: u32| c(1.0 / (1..=k).map(f64::from).product::<f64>());
-    let r2 = r * r;
-    let r4 = r2 * r2;
-    let r8 = r4 * r4;
-    let hi = r4 * (r * f(13) + f(12)) + (r2 * (r * f(11) + f(10)) + (r * f(9) + f(8)));
-    let lo = r4 * (r2 * (r * f(7) + f(6)) + (r * f(5) + f(4))) + (r2 * (r * f(3) + f(2)) + r);
-    let m = (r8 * hi + lo).to_array();
-    // 2^n from the integer n in the low mantissa bits of t
-    let tt = t.to_array();
-    let pow2 =
-        |t: f64| f64::from_bits(t.to_bits().wrapping_sub(SHIFT.to_bits()).wrapping_add(1023) << 52);
-    (m, [pow2(tt[0]), pow2(tt[1])])
-}
-
-/// exp(x) by [`exp_pair`]'s inlined polynomial (one lane used): cheaper than a call to the
-/// C library's exp in the scalar temperature solve.
-#[inline(always)]
-pub(crate) fn exp_fast(x: f64) -> f64 {
-    exp_pair(x, 0.0).0
-}
-
-#[cfg(test)]
-mod tests {
-    use super::exp_pair;
-
-    #[test]
-    fn exp_pair_matches_exp() {
-        let mut worst: f64 = 0.0;
-        let mut x = -745.0;
-        while x < 745.0 {
-            for (a, b) in [(x, -x), (x * 1e-3, x * 1e-6)] {
-                let (ea, eb) = exp_pair(a, b);
-                for (e, v) in [(ea, a), (eb, b)] {
-                    let rel = (e - v.exp()).abs() / v.exp().max(f64::MIN_POSITIVE);
-                    worst = worst.max(rel);
-                }
-            }
-            x += 0.0137;
-        }
-        assert!(worst < 1e-15, "worst relative error {worst:e}");
-        assert_eq!(exp_pair(0.0, 0.0), (1.0, 1.0));
-    }
-
-    /// exp(x) - 1 within 1e-15 of the C library's exp_m1 (relative), also for |x| down to
-    /// 1e-12 where exp(x) - 1 computed from exp(x) would cancel, and on both sides of the
-    /// n = 0 interval |x| < ln 2 / 2.
-    #[test]
-    fn exp_m1_pair_matches_exp_m1() {
-        let mut worst: f64 = 0.0;
-        let mut xs = vec![];
-        let mut x = 1e-12;
-        while x < 745.0 {
-            xs.push(x);
-            xs.push(-x);
-            x *= 1.0173;
-        }
-        for w in xs.chunks(2) {
-            let ((ea, ma), (eb, mb)) = super::exp_m1_pair(w[0], w[1]);
-            for (e, m, v) in [(ea, ma, w[0]), (eb, mb, w[1])] {
-                let r = v.exp_m1();
-                if r.is_infinite() {
-                    assert_eq!(m, r, "exp_m1 at {v}");
-                } else {
-                    // a NaN fails the comparison
-                    let rel = (m - r).abs() / r.abs();
-                    assert!(rel < 1e-15, "exp_m1 at {v}: {m} vs {r}");
-                    worst = worst.max(rel);
-                }
-                assert_eq!(e.to_bits(), exp_pair(v, 0.0).0.to_bits(), "exp at {v}");
-            }
-        }
-        assert!(
-            worst > 0.0 && worst < 1e-15,
-            "worst relative error {worst:e}"
-        );
     }
 }

@@ -122,8 +122,8 @@ impl Model {
         }
     }
 
-    /// How a step advances the bristles (see [`crate::engine::Scheme`]; Polach has none).
-    pub fn set_scheme(&mut self, scheme: crate::engine::Scheme) {
+    /// How a step advances the bristles (see [`crate::scheme::Scheme`]; Polach has none).
+    pub fn set_scheme(&mut self, scheme: crate::scheme::Scheme) {
         if let Model::Bristle(c) = self {
             c.set_scheme(scheme);
         }
@@ -138,7 +138,7 @@ impl Model {
     }
 
     /// How a step advances the bristles now (None for Polach, which has none).
-    pub fn scheme(&self) -> Option<crate::engine::Scheme> {
+    pub fn scheme(&self) -> Option<crate::scheme::Scheme> {
         match self {
             Model::Bristle(c) => Some(c.scheme()),
             Model::Polach { .. } => None,

@@ -109,7 +109,7 @@ impl Kernel {
     }
 
     /// Decay factors exp(-s_k h) and increments (1 - exp(-s_k h))/s_k for a sub-step `h`.
-    /// Two terms at a time by [`crate::material::exp_m1_pair`] (exp and exp_m1 within 1e-15
+    /// Two terms at a time by [`crate::fastexp::exp_m1_pair`] (exp and exp_m1 within 1e-15
     /// of the C library's, inlined).
     pub fn step_factors(&self, h: f64) -> ([f64; N_KERNEL], [f64; N_KERNEL]) {
         let mut decay = [1.0; N_KERNEL];
@@ -119,7 +119,7 @@ impl Kernel {
         while k < N_KERNEL {
             let k2 = (k + 1).min(N_KERNEL - 1);
             let (x1, x2) = (self.rates[k] * h, self.rates[k2] * h);
-            let ((d1, m1), (d2, m2)) = crate::material::exp_m1_pair(-x1, -x2);
+            let ((d1, m1), (d2, m2)) = crate::fastexp::exp_m1_pair(-x1, -x2);
             decay[k] = d1;
             gain[k] = -m1 / self.rates[k];
             decay[k2] = d2;
@@ -251,7 +251,7 @@ pub fn peclet_ok(a: f64, v: f64, v_w: f64, kappa_w: f64, kappa_r: f64) -> bool {
 /// coefficient) that the local temperature solves resolve: 1e-10. The forces follow the
 /// temperature through these factors, so a solve that stops anywhere within its tolerance
 /// moves them by about this much relative: with 1e-10 a finite-difference derivative with a
-/// relative increment of 1e-6 is still right to about 1e-4 relative (issue 25). The earlier
+/// relative increment of 1e-6 is still right to about 1e-4 relative. The earlier
 /// 1e-4 made the outputs jump by 1e-6..1e-5 relative where an input moved by one ulp changed
 /// an iteration count; it cost about a fifth fewer instructions per transient step
 /// (docs/model.md, "Tolerance of the temperature solve").

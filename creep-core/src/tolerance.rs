@@ -35,8 +35,8 @@
 //! nothing more: it is not a bound for other inputs, and the limit it is measured against
 //! has its own uncertainty (`limit_unc_pct`).
 
-use crate::engine::Scheme;
 use crate::error::{CreepError, Result};
+use crate::scheme::Scheme;
 use std::sync::OnceLock;
 
 /// The accuracy table as written by the benchmark (comment lines `#`, a header, the rows).
@@ -196,7 +196,7 @@ pub struct Filter {
     pub nx: Option<usize>,
     /// Strips, if given.
     pub ny: Option<usize>,
-    /// Scheme, if given ([`Scheme::Cells`] counts as `cells`).
+    /// Scheme, if given.
     pub scheme: Option<Scheme>,
     /// For a steady computation (`ecf curve`, `field`): the continuous rows are left out.
     /// Its steady state is the cell scheme's march, and its rows measure how it steps; the
@@ -208,7 +208,7 @@ impl Filter {
     fn allows(&self, nx: usize, ny: usize, s: Scheme) -> bool {
         self.nx.is_none_or(|n| n == nx)
             && self.ny.is_none_or(|n| n == ny)
-            && self.scheme.is_none_or(|f| f.name() == s.name())
+            && self.scheme.is_none_or(|f| f == s)
             && !(self.steady && s == Scheme::Continuous)
     }
 }
@@ -472,12 +472,12 @@ fn describe(f: Filter) -> String {
 
 /// The scheme of `cfg` that restricts a tolerance's choice to its rows as an explicit one
 /// does (the CLI's --tol, the FMU's rel_tol): any scheme but its model's default
-/// ([`Scheme::default_for`]: `cells-ho` for ECF), `continuous` only for time steps (`steady`
+/// ([`ModelKind::default_scheme`](crate::ModelKind::default_scheme): `cells-ho` for ECF), `continuous` only for time steps (`steady`
 /// false; continuous's steady state is the cells march). The default restricts nothing: a
 /// file that names it is not told from one that does not.
 pub fn restricting_scheme(cfg: &crate::Config, steady: bool) -> Option<Scheme> {
     Some(cfg.scheme)
-        .filter(|s| *s != Scheme::default_for(cfg.model) && !(steady && *s == Scheme::Continuous))
+        .filter(|s| *s != cfg.model.default_scheme() && !(steady && *s == Scheme::Continuous))
 }
 
 /// The tabulated preset that `cfg` is, unchanged (rule 2): its name if the table has rows of

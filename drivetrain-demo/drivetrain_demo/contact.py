@@ -85,7 +85,8 @@ def fmu_identity(path) -> dict:
 
 
 class CurveContact:
-    """Stand-in: quasi-steady force f(cx) from the `ecf curve` CLI (no contact dynamics)."""
+    """Stand-in: quasi-steady force f(cx) from the Python package ecf (`ecf.curve`) when it is
+    installed, else from the `ecf curve` CLI: the same numbers (no contact dynamics)."""
 
     kind = "curve"
 
@@ -98,6 +99,17 @@ class CurveContact:
 
     @staticmethod
     def _curve(cx, model, v, F_N, T_bulk, preset, grid):
+        # the creepages as the CLI receives them (6 significant digits): the same f either way
+        cx = np.array([float(f"{c:.6g}") for c in cx])
+        try:
+            import ecf
+        except ImportError:
+            ecf = None
+        if ecf is not None and hasattr(ecf, "curve"):
+            t = ecf.curve(cx=cx, model=model, v_mps=float(v), fn_kN=float(F_N / 1e3), t_bulk_C=float(T_bulk),
+                          preset=preset or None, grid=f"{grid[0]}x{grid[1]}" if grid else None)
+            # rounded to the 8 decimals of the CLI's CSV: the demo's results do not depend on the path
+            return np.array([float(f"{x:.8f}") for x in t["f"]])
         if not ECF_CLI.is_file():
             raise DrivetrainError(f"{ECF_CLI} missing: run `cargo build --release -p ecf-cli`")
         args = [str(ECF_CLI), "curve", "--model", model, "--v-mps", str(v), "--fn-kn", str(F_N / 1e3),

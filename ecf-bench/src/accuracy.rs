@@ -19,10 +19,9 @@
 //! % of max_t |L| (for the temperature, of the largest rise).
 //!
 //! Schemes: `cells` is [`Scheme::CellsMarch`], what `ecf --scheme cells` and the FMU's
-//! `scheme = 3` run, so that the costs are those a
-//! user gets; the reference
-//! [`Scheme::Cells`] gives the same errors to 0.001 % at a higher cost (checked on the
-//! `--quick` cases). `continuous` is [`Scheme::Continuous`], `cells-ho` is
+//! `scheme = 3` run, so that the costs are those a user gets; the reference without the march
+//! of new bristles (`Contact::set_march_new_bristles`) gives the same results bit for bit at
+//! a higher cost. `continuous` is [`Scheme::Continuous`], `cells-ho` is
 //! [`Scheme::CellsHigher`] (the higher-order rules along each move).
 //!
 //! The full run (not `--quick`) also writes the table as CSV to

@@ -254,13 +254,13 @@ fn guard_holds(fastsim: f64, dry: f64, ho: f64) -> bool {
 
 fn transient_table(quick: bool) {
     let sim = if quick { 0.01 } else { 0.1 };
-    println!("== transient ECF, one contact, preset dry, grid 80x21, c_x = 15 % (+-1 % wobble), F_N = 110 kN, {sim} s simulated; ECF's default scheme {:?} (docs/model.md section 3.2), the first-order CellsMarch and the opt-in Continuous (docs/model.md section 3)", Scheme::default_for(creep_core::ModelKind::Ecf));
+    println!("== transient ECF, one contact, preset dry, grid 80x21, c_x = 15 % (+-1 % wobble), F_N = 110 kN, {sim} s simulated; ECF's default scheme {:?} (docs/model.md section 3.2), the first-order CellsMarch and the opt-in Continuous (docs/model.md section 3)", creep_core::ModelKind::Ecf.default_scheme());
     println!(
         "{:>8} {:>8} {:>12} {:>14} {:>16}",
         "v_m/s", "dt_ms", "scheme", "us/step(med)", "wall/simulated"
     );
     for scheme in [
-        Scheme::default_for(creep_core::ModelKind::Ecf),
+        creep_core::ModelKind::Ecf.default_scheme(),
         Scheme::CellsMarch,
         Scheme::Continuous,
     ] {

@@ -128,20 +128,8 @@ impl DataArgs {
     /// The configuration and the measurement file, read once.
     fn load(&self) -> Result<(Config, Data), CreepError> {
         let cfg = self.config_only()?;
-        let mut defaults = ecf_measure::measure::Defaults::default();
-        if let Some(v) = self.v_mps {
-            defaults.v_mps = Some(creep_core::error::check_range(
-                "--v-mps", v, 0.0, 200.0, "m/s",
-            )?);
-        }
-        if let Some(f) = self.fn_kn {
-            defaults.fn_kn = Some(creep_core::error::check_range(
-                "--fn-kN", f, 1e-6, 5000.0, "kN",
-            )?);
-        }
-        if let Some(u) = &self.cx_unit {
-            defaults.cx_unit = Some(ecf_measure::measure::CreepageUnit::parse(u)?);
-        }
+        let defaults =
+            ecf_measure::report::data_defaults(self.v_mps, self.fn_kn, self.cx_unit.as_deref())?;
         Ok((
             cfg,
             measure_cmd::read_data(&self.data, &defaults, self.quiet)?,
@@ -160,20 +148,15 @@ impl DataArgs {
     }
 
     fn config_only(&self) -> Result<Config, CreepError> {
-        let mut cfg = match (&self.config, &self.preset) {
-            (Some(p), None) => Config::from_file(p)?,
-            (None, Some(p)) => Config::preset(p)?,
-            _ => {
-                return Err(CreepError::Config {
-                    source_name: "--config/--preset".into(),
-                    message: "give exactly one of --config FILE or --preset NAME".into(),
-                })
-            }
-        };
-        if let Some(g) = &self.grid {
-            cfg.grid = Grid::parse(g)?;
-        }
-        Ok(cfg)
+        let file = self
+            .config
+            .clone()
+            .map(creep_core::commands::ConfigSource::File);
+        creep_core::commands::loop_config(
+            file.as_ref(),
+            self.preset.as_deref(),
+            self.grid.as_deref(),
+        )
     }
 }
 

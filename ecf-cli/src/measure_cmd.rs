@@ -3,11 +3,10 @@
 use crate::plots::{xy_plot, Set, Style};
 use creep_core::params::{self, P};
 use creep_core::{Config, CreepError, Inputs, Model};
-use ecf_measure::evaluate::{
-    compare as cmp, predict_warned, regimes, warnings_text, ModelWarning, Prediction,
-};
+use ecf_measure::evaluate::{predict_warned, regimes, warnings_text, ModelWarning, Prediction};
 use ecf_measure::fit::{default_free, fit_params as run_fit, FreeParam};
 use ecf_measure::measure::{Data, Dataset};
+use ecf_measure::report::{self as rep, compare_rows};
 use std::io::Write;
 use std::path::Path;
 
@@ -27,33 +26,13 @@ pub fn compare(
     plots: Option<&Path>,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let (pred, warnings) = predict_warned(cfg, data, threads)?;
-    let c = cmp(data, &pred);
-    if !c.cv_rmse_pct.is_finite() {
-        let mean = ecf_measure::stats::mean(&data.rows.iter().map(|r| r.f).collect::<Vec<_>>());
-        return Err(CreepError::Data {
-            source_name: data.source.clone(),
-            message: format!(
-                "CV(RMSE) is not finite ({}): the mean measured traction coefficient is {mean} and CV(RMSE) divides by it (Eq. 2.9)",
-                c.cv_rmse_pct
-            ),
-        });
-    }
+    let report = compare_rows(cfg, data, threads)?;
+    let (c, warnings) = (&report.comparison, &report.warnings);
     if let Some(dir) = plots {
-        write_plots(cfg, data, &pred, dir)?;
+        write_plots(cfg, data, &report.pred, dir)?;
     }
     if json {
-        let mut v = serde_json::to_value(&c).map_err(|e| CreepError::State(e.to_string()))?;
-        v["data"] = serde_json::json!(data.source);
-        v["config"] = cfg.to_json();
-        v["warnings"] = serde_json::json!(warnings);
-        v["rows"] = serde_json::json!(data
-            .rows
-            .iter()
-            .zip(&pred)
-            .map(|(r, p)| serde_json::json!({"line": r.line, "series": r.series, "cx": r.cx, "f": r.f, "f_model": p.f, "residual": p.f - r.f, "T_max_C": p.t_max, "slip_velocity_mps": p.slip_velocity}))
-            .collect::<Vec<_>>());
-        write_json(w, &v)?;
+        write_json(w, &report.to_json(cfg, data)?)?;
     } else {
         writeln!(
             w,
@@ -85,7 +64,7 @@ pub fn compare(
             )
             .map_err(io)?;
         }
-        write_warnings(w, &warnings)?;
+        write_warnings(w, warnings)?;
     }
     Ok(())
 }
@@ -118,7 +97,7 @@ pub(crate) fn write_plots(
     dir: &Path,
 ) -> Result<Vec<(std::path::PathBuf, String)>, CreepError> {
     let mut written = Vec::new();
-    std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
+    crate::cleanup::create_dir_all(dir).map_err(|e| CreepError::Config {
         source_name: dir.display().to_string(),
         message: format!("cannot create: {e}"),
     })?;
@@ -307,29 +286,6 @@ fn sanitize(s: &str) -> String {
         .collect()
 }
 
-/// The configuration with `--bound NAME=MIN:MAX` applied.
-pub fn with_bounds(cfg: &Config, bounds: &[String]) -> Result<Config, CreepError> {
-    let mut c = cfg.clone();
-    for b in bounds {
-        let bad = || CreepError::Config {
-            source_name: "--bound".into(),
-            message: format!("'{b}': expected NAME=MIN:MAX, e.g. tau_c2_0_GPa=0.2:2"),
-        };
-        let (n, r) = b.split_once('=').ok_or_else(bad)?;
-        let (lo, hi) = r.split_once(':').ok_or_else(bad)?;
-        let num = |t: &str| -> Result<f64, CreepError> {
-            match t.trim() {
-                "inf" => Ok(f64::INFINITY),
-                "-inf" => Ok(f64::NEG_INFINITY),
-                t => t.parse().map_err(|_| bad()),
-            }
-        };
-        let id = FreeParam::resolve(&c, n.trim())?;
-        id.set_bounds(&mut c, num(lo)?, num(hi)?)?;
-    }
-    Ok(c)
-}
-
 /// What `ecf fit` asks for beyond the data and the configuration.
 pub struct FitRequest<'a> {
     /// `--free`: the parameters to fit, comma separated (`None`: the data kind's default).
@@ -346,9 +302,7 @@ impl FitRequest<'_> {
     /// The set-up both kinds of fit start from: the configuration with the `--bound`s applied,
     /// and the free parameters of `--free` (else `default`).
     fn setup(&self, cfg: &Config, default: Vec<P>) -> Result<(Config, Vec<FreeParam>), CreepError> {
-        let cfg = with_bounds(cfg, self.bounds)?;
-        let free = FreeParam::list(&cfg, self.free, default)?;
-        Ok((cfg, free))
+        rep::fit_setup(cfg, self.free, self.bounds, default)
     }
 }
 
@@ -645,31 +599,13 @@ pub fn compare_hpt(
     plots: Option<&Path>,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let model = ecf_measure::hpt::predict(cfg, rows);
-    let mut series: Vec<String> = Vec::new();
-    for r in rows {
-        if !series.contains(&r.series) {
-            series.push(r.series.clone());
-        }
-    }
+    let cmp = rep::compare_hpt(cfg, rows);
+    let (model, overall) = (&cmp.model, cmp.overall);
+    let series: Vec<String> = cmp.per_series.iter().map(|p| p.0.clone()).collect();
     let idx_of =
         |s: &str| -> Vec<usize> { (0..rows.len()).filter(|&i| rows[i].series == s).collect() };
-    let per: Vec<(String, f64)> = series
-        .iter()
-        .map(|s| {
-            let idx = idx_of(s);
-            (
-                s.clone(),
-                ecf_measure::stats::cv_rmse_pct(
-                    &idx.iter().map(|&i| rows[i].tau).collect::<Vec<_>>(),
-                    &idx.iter().map(|&i| model[i]).collect::<Vec<_>>(),
-                ),
-            )
-        })
-        .collect();
-    let overall = ecf_measure::hpt::cv_rmse(cfg, rows);
     if let Some(dir) = plots {
-        std::fs::create_dir_all(dir).map_err(|e| CreepError::Config {
+        crate::cleanup::create_dir_all(dir).map_err(|e| CreepError::Config {
             source_name: dir.display().to_string(),
             message: e.to_string(),
         })?;
@@ -712,8 +648,7 @@ pub fn compare_hpt(
         })?;
     }
     if json {
-        let v = serde_json::json!({"cv_rmse_pct": overall, "n": rows.len(), "groups": per.iter().map(|(s, c)| serde_json::json!({"by": "series", "value": s, "cv_rmse_pct": c})).collect::<Vec<_>>()});
-        write_json(w, &v)?;
+        write_json(w, &cmp.to_json(rows.len()))?;
     } else {
         writeln!(
             w,
@@ -722,7 +657,7 @@ pub fn compare_hpt(
             rows.len()
         )
         .map_err(io)?;
-        for (s, c) in per {
+        for (s, c) in &cmp.per_series {
             writeln!(w, "  series {s:<16} {c:8.2} %").map_err(io)?;
         }
     }
@@ -742,62 +677,6 @@ pub fn fit_hpt(
     report_fit(&r, &[], req.out, req.json, w)
 }
 
-/// A JSON number, or "inf" for an infinity (a standard error of a parameter the data do not
-/// identify), or null for NaN (an uncertainty not computed).
-fn json_num(x: f64) -> serde_json::Value {
-    if x.is_finite() {
-        serde_json::json!(x)
-    } else if x.is_infinite() {
-        serde_json::json!("inf")
-    } else {
-        serde_json::Value::Null
-    }
-}
-
-/// The unit of a fitted parameter's display value ("-" for formula/custom parameters).
-fn param_unit(name: &str) -> &'static str {
-    params::by_name(name)
-        .map(|p| params::spec(p).unit)
-        .unwrap_or("-")
-}
-
-/// The `"fit"` record of a fitted configuration: what `ecf report` shows as the table of
-/// fitted parameters (values in display units, standard errors, flags).
-fn fit_record(
-    r: &ecf_measure::fit::FitResult,
-    model_warnings: &[ModelWarning],
-) -> serde_json::Value {
-    let params: Vec<serde_json::Value> = r
-        .params
-        .iter()
-        .enumerate()
-        .map(|(k, p)| {
-            let st = r.status.get(k);
-            serde_json::json!({
-                "name": p.name,
-                "unit": param_unit(&p.name),
-                "start": json_num(p.start),
-                "value": json_num(p.value),
-                "stderr": match st {
-                    Some(ecf_measure::fit::ParamStatus::Determined) => json_num(p.stderr),
-                    Some(ecf_measure::fit::ParamStatus::NotIdentifiable) => json_num(f64::INFINITY),
-                    _ => serde_json::Value::Null,
-                },
-                "flag": st.map(|s| s.note()).unwrap_or(""),
-            })
-        })
-        .collect();
-    serde_json::json!({
-        "cv_rmse_pct_before": json_num(r.cv_rmse_pct_before),
-        "cv_rmse_pct_after": json_num(r.cv_rmse_pct_after),
-        "params": params,
-        "warnings": r.warnings,
-        "termination": r.termination,
-        "starts": r.starts,
-        "model_warnings": model_warnings,
-    })
-}
-
 /// Writes the fitted configuration (`write_out`: atomically for a file) and reports the fit.
 fn report_fit(
     r: &ecf_measure::fit::FitResult,
@@ -806,10 +685,7 @@ fn report_fit(
     json: bool,
     w: &mut Vec<u8>,
 ) -> Result<(), CreepError> {
-    let mut doc = r.config.to_json();
-    if let Some(o) = doc.as_object_mut() {
-        o.insert("fit".into(), fit_record(r, model_warnings));
-    }
+    let doc = rep::fitted_document(r, model_warnings);
     let text =
         serde_json::to_string_pretty(&doc).map_err(|e| CreepError::State(e.to_string()))? + "\n";
     write_out(out, "json.tmp", text.as_bytes())?;
@@ -817,28 +693,7 @@ fn report_fit(
         eprintln!("warning: {m}");
     }
     if json {
-        let map = |k: usize| -> serde_json::Map<String, serde_json::Value> {
-            r.params
-                .iter()
-                .map(|p| (p.name.clone(), json_num([p.start, p.value, p.stderr][k])))
-                .collect()
-        };
-        let v = serde_json::json!({
-            "cv_rmse_pct_before": r.cv_rmse_pct_before,
-            "cv_rmse_pct_after": r.cv_rmse_pct_after,
-            "params": map(1),
-            "stderr": map(2),
-            "start": map(0),
-            "status": r.params.iter().zip(&r.status).map(|(p, s)| (p.name.clone(), serde_json::json!(s))).collect::<serde_json::Map<_, _>>(),
-            "free": r.params.iter().map(|p| p.name.clone()).collect::<Vec<_>>(),
-            "correlation": r.correlation.iter().map(|row| row.iter().map(|x| json_num(*x)).collect::<Vec<_>>()).collect::<Vec<_>>(),
-            "warnings": r.warnings,
-            "evaluations": r.evaluations,
-            "termination": r.termination,
-            "starts": r.starts,
-            "model_warnings": model_warnings,
-            "out": out.display().to_string(),
-        });
+        let v = rep::fit_json(r, model_warnings, Some(&out.display().to_string()));
         write_json(w, &v)?;
         return Ok(());
     }

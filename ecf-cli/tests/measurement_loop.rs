@@ -380,6 +380,10 @@ fn an_interrupted_report_leaves_no_temporary_files() {
             "{} left after SIGINT at {delay_ms} ms",
             tmp.display()
         );
+        assert!(
+            !tmp.with_extension("removing").exists(),
+            "the folder moved aside was left"
+        );
         assert!(!html.with_extension("html.tmp").exists());
         if status.code() == Some(130) {
             interrupted += 1;

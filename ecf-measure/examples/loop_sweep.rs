@@ -182,6 +182,11 @@ fn main() {
                 eprintln!("{preset} seed {seed}: gain {g:.3} noise, evidence {e:.2}");
             }
         }
-        println!("| {preset} | {nulls} | {searched} | {proposals} | {gain:.2} | {z:.1} | {longest:.0} | {cpu:.0} |");
+        let (gain, z) = if searched > 0 {
+            (format!("{gain:.3}"), format!("{z:.1}"))
+        } else {
+            ("-".into(), "-".into())
+        };
+        println!("| {preset} | {nulls} | {searched} | {proposals} | {gain} | {z} | {longest:.0} | {cpu:.0} |");
     }
 }

@@ -19,6 +19,7 @@ pub mod heldout;
 pub mod hpt;
 pub mod measure;
 pub mod noise;
+pub mod report;
 pub mod residuals;
 pub mod search;
 pub mod stats;

@@ -1,6 +1,6 @@
 //! Measures how F_x, F_y, M_z depend on the normal force F_N: central differences with
 //! relative increments 1e-4..1e-8 and a fine scan of F_x around F_N, steady and after
-//! transient steps (issue 25, the derivative in F_N).
+//! transient steps (docs/fmu.md, "Derivatives and Jacobians").
 //!
 //! Usage: `cargo run --release -p ecf-fmu --example fn_scan [preset] [steps] [scan points]`
 //! (defaults: dry, the preset's grid unless ECF_NX, ECF_NY, 47 steps of 1 ms from the steady state at v = 10 m/s, c_x = -0.5 %,

@@ -1,9 +1,10 @@
 //! The contact settings: the parameters as the importer set them, their checks and read-back, and the configuration they resolve to (preset or configuration file, then every value set).
 
+pub use crate::vars::DEFAULT_REL_TOL;
 use crate::vars::{Geo, In, Slot, Start, Value, Var, N_AUX, N_GEO, N_INPUTS};
 use creep_core::effects::Effect;
-use creep_core::engine::Scheme;
 use creep_core::params::{self, P};
+use creep_core::scheme::Scheme;
 use creep_core::{Config, Geometry, Grid, ModelKind, Modifier};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -234,31 +235,17 @@ fn geo_of(geometry: Geometry, g: Geo) -> Option<f64> {
     }
 }
 
-/// The code of the parameter `scheme` for an engine scheme: 1 continuous, 2 cell by cell
-/// with the higher-order rules, 3 cell by cell ([`Scheme::CellsMarch`]; the reference
-/// [`Scheme::Cells`] too). 0, the start value, is "not set".
+/// The code of the parameter `scheme` for an engine scheme ([`Scheme::fmu_code`], the
+/// table [`creep_core::scheme::SCHEMES`]). 0, the start value, is "not set".
 pub fn scheme_code(s: Scheme) -> i32 {
-    match s {
-        Scheme::Continuous => 1,
-        Scheme::CellsHigher => 2,
-        Scheme::CellsMarch | Scheme::Cells => 3,
-    }
+    s.fmu_code()
 }
 
 /// The engine scheme of a code of the parameter `scheme` ([`scheme_code`]; 0 and any other
 /// code: cell by cell).
 pub fn scheme_of_code(c: i32) -> Scheme {
-    match c {
-        1 => Scheme::Continuous,
-        2 => Scheme::CellsHigher,
-        _ => Scheme::CellsMarch,
-    }
+    Scheme::by_fmu_code(c).unwrap_or(Scheme::CellsMarch)
 }
-
-/// The start value of `rel_tol`: 2 %, the tolerance whose choice runs in real time at 20 m/s
-/// with 0.25 ms steps for each of dry, table4.1 and wet (docs/fmu.md, "Grid and scheme for a
-/// tolerance").
-pub const DEFAULT_REL_TOL: f64 = 0.02;
 
 impl Settings {
     /// The tolerance in force: the value set; at the start value, [`DEFAULT_REL_TOL`] unless

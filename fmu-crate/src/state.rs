@@ -38,6 +38,9 @@ use creep_core::{AnyModifier, Bound, Config, Geometry, Grid, Model, ModelKind, M
 
 /// Magic bytes at the start of a serialized FMU state.
 pub const MAGIC: &[u8; 8] = b"ECFFMUST";
+/// Magic bytes at the start of a state serialized by the FMI 3.0 FMU: they precede the
+/// bytes of [`serialize`], so that each FMU refuses the other's states by name.
+pub const MAGIC3: &[u8; 8] = b"ECFFMI3S";
 /// Format version written by this build.
 pub const VERSION: u32 = 8;
 
@@ -281,6 +284,23 @@ fn get_config_v4(r: &mut R) -> Result<(EffectSet, Params), String> {
     Ok((effects, p))
 }
 
+/// The bytes of a snapshot in the FMI 3.0 FMU's format: [`MAGIC3`], then [`serialize`]'s.
+pub fn serialize3(s: &Snapshot) -> Vec<u8> {
+    let mut out = MAGIC3.to_vec();
+    out.extend(serialize(s));
+    out
+}
+
+/// Reads a state of the FMI 3.0 FMU ([`serialize3`]); a state of the FMI 2.0 FMU is
+/// refused by name.
+pub fn deserialize3(data: &[u8]) -> Result<Snapshot, String> {
+    match data.strip_prefix(&MAGIC3[..]) {
+        Some(rest) => deserialize(rest),
+        None if data.starts_with(MAGIC) => Err("the state was serialized by the FMI 2.0 FMU (ecf_contact.fmu); the FMI 3.0 FMU reads only its own states: restore it in an instance of the FMI 2.0 FMU".into()),
+        None => Err("not a serialized ecf_contact FMU state (bad magic)".into()),
+    }
+}
+
 /// Serializes a snapshot.
 pub fn serialize(s: &Snapshot) -> Vec<u8> {
     let mut w = W::new();
@@ -395,6 +415,9 @@ fn read_named(
 /// Reads a snapshot written by [`serialize`]; checks everything, including the core state.
 pub fn deserialize(data: &[u8]) -> Result<Snapshot, String> {
     let mut r = R::new(data);
+    if data.starts_with(MAGIC3) {
+        return Err("the state was serialized by the FMI 3.0 FMU (ecf_contact_fmi3.fmu); the FMI 2.0 FMU reads only its own states: restore it in an instance of the FMI 3.0 FMU".into());
+    }
     if r.take(8).ok() != Some(&MAGIC[..]) {
         return Err("not a serialized ecf_contact FMU state (bad magic)".into());
     }

@@ -1,4 +1,4 @@
-//! The configuration `ecf diagnose --out` proposed for the worked example (examples/measurements/speed-proposed.json, a formula effect in v_mps) runs in the FMU as it stands and gives the model's values (issue 26).
+//! The configuration `ecf diagnose --out` proposed for the worked example (examples/measurements/speed-proposed.json, a formula effect in v_mps) runs in the FMU as it stands and gives the model's values (docs/measurements.md, "An effect outside the catalogue: from the first `compare` to the FMU").
 
 mod common;
 use common::*;

@@ -417,7 +417,8 @@ impl GetStringSafe for Fmu {
 
 #[test]
 fn a_formula_nested_ten_thousand_deep_is_refused_on_a_small_thread() {
-    // issue 25: the recursive parser overflowed the stack of the importer's thread
+    // nesting is capped (docs/measurements.md section 4, "Add it"), so a deep formula
+    // cannot overflow the stack of the importer's thread
     let dir = std::env::temp_dir().join(format!("ecf_deep_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let cfg = dir.join("deep.json");

@@ -1,6 +1,6 @@
-//! Outputs smooth in the inputs (issue 25), as a master sees them: finite-difference
-//! derivatives of F_x, F_y, M_z with respect to c_x, c_y, spin and F_N, with relative
-//! increments 1e-4 ... 1e-8, agree within 1 %.
+//! Outputs smooth in the inputs (docs/fmu.md, "Derivatives and Jacobians"), as a master sees
+//! them: finite-difference derivatives of F_x, F_y, M_z with respect to c_x, c_y, spin and F_N,
+//! with relative increments 1e-4 ... 1e-8, agree within 1 %.
 //!
 //! Two ways of forming them:
 //! - a master's Jacobian at a communication point: save the FMU state, step once with one
@@ -14,10 +14,11 @@
 mod common;
 use common::{Fmu, OK};
 
-/// The case of issue 25 with lateral creepage and spin: dry preset on the grid 80 x 21 cell
-/// by cell (scheme 3; given explicitly: the FMU's start value of rel_tol would choose a
-/// coarse grid at this speed, and ECF's default scheme is the higher-order rules, below),
-/// v = 10 m/s, c_x = -0.5 %, c_y = 0.1 %, spin = 0.05 1/m, F_N = 110 kN, steps of 1 ms.
+/// The operating point of `examples/fn_scan.rs` with lateral creepage and spin: dry preset on
+/// the grid 80 x 21 cell by cell (scheme 3; given explicitly: the FMU's start value of rel_tol
+/// would choose a coarse grid at this speed, and ECF's default scheme is the higher-order
+/// rules, below), v = 10 m/s, c_x = -0.5 %, c_y = 0.1 %, spin = 0.05 1/m, F_N = 110 kN, steps
+/// of 1 ms.
 const BASE: [(&str, f64); 4] = [("cx", -0.005), ("cy", 0.001), ("spin", 0.05), ("FN", 110e3)];
 const STEPS: usize = 20;
 const DT: f64 = 1e-3;
@@ -129,9 +130,9 @@ fn masters_jacobian_agrees(scheme: i32, finest: i32) {
         eprintln!("{input}: {d:?}");
         // F_N changes the semi-axes and with them the cells the step rolls: an increment
         // of 1e-4 of F_N spans lattice kinks (nodes changing regime). Measured with the
-        // Gauss-Legendre strips (issue 24 step 6): M_z's slope changes by 0.6-1.2 % at each
-        // of four kinks between +1e-5 and +5e-5 of F_N, so the 1e-4 difference is 1.7 % off
-        // the local derivative (F_x 0.05 %); increments from 1e-5 down stay between kinks.
+        // Gauss-Legendre strips (docs/model.md section 3.1): M_z's slope changes by 0.6-1.2 %
+        // at each of four kinks between +1e-5 and +5e-5 of F_N, so the 1e-4 difference is 1.7 %
+        // off the local derivative (F_x 0.05 %); increments from 1e-5 down stay between kinks.
         // (With equal strips no kink happened to fall within 1e-4 here.)
         let from = if input == "FN" { 1 } else { 0 };
         agree(input, d, &[0, 1, 2], 0.01, from);

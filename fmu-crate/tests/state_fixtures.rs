@@ -82,15 +82,16 @@ fn a_version_4_state_loads_and_continues() {
         .map(|v| v.vr)
         .collect();
     // The fixture was written before the temperature solve's tolerance went from 1e-4 to
-    // 1e-10 (issue 25) and before issue 24's whole-cell commit, cold crossing and
-    // Gauss-Legendre strips (this grid's 3 strips moved from eta = 0, +-2/3 to 0, +-0.775).
-    // The continuation is not a fresh run of this build: it keeps the fixture's lattice,
-    // whose nodes sit elsewhere than a fresh run's, so the two differ by the ripple of this
-    // 6 x 3 grid as its nodes pass the edges, and do not converge (over steps 7-9, measured
-    // with the step 6 strips: F_x 1.2 %, T_max 1.7 %, T_mean 3.7 %, P_fric 3.1 %; before
-    // them at most 1.3e-3, and the bound was 1e-2). A value read into the wrong place would
-    // be off by far more than 5e-2; what the importer set is compared exactly above, and
-    // the bytes below.
+    // 1e-10 (docs/model.md section 6, "Tolerance of the temperature solve") and before the
+    // whole-cell commit (section 3.2), the cold crossing (section 4, "Where an adhering
+    // bristle yields") and the Gauss-Legendre strips (section 3.1; this grid's 3 strips moved
+    // from eta = 0, +-2/3 to 0, +-0.775).
+    // The continuation is not a fresh run of this build: it keeps the fixture's lattice, whose
+    // nodes sit elsewhere than a fresh run's, so the two differ by the ripple of this 6 x 3
+    // grid as its nodes pass the edges, and do not converge (over steps 7-9, measured with the
+    // Gauss-Legendre strips: F_x 1.2 %, T_max 1.7 %, T_mean 3.7 %, P_fric 3.1 %; before them at
+    // most 1.3e-3, and the bound was 1e-2). A value read into the wrong place would be off by
+    // far more than 5e-2; what the importer set is compared exactly above, and the bytes below.
     for k in 7..10 {
         step(&mut now, k);
         step(&mut old, k);

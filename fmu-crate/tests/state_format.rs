@@ -9,27 +9,28 @@ use ecf_contact::state;
 /// columns = humidity=aux2), from fmi2SerializeFMUstate of that build.
 const STATE_V2: &[u8] = include_bytes!("data/state_v2.bin");
 
-/// The outputs (f64 bits, in the order of [`common::OUTPUT_NAMES`], the outputs of that
-/// build) after each of 4 steps of 0.5 ms from
-/// the state, with cx = 0.02, 0.04, 0.06, 0.08. The build that wrote the state continued
-/// them bit for bit until the scalar temperature solve of a softening layer (creep-core
-/// engine/softening.rs) replaced the general one for most moves. Since issue 25 the
-/// temperature solves converge to 1e-10 relative change of the softening factors (was 1e-4,
-/// with an interpolation across brackets up to 15 K wide that biased the forces): these
-/// values were re-recorded then (the ones before differed by up to 3.2e-3 in F_x), and again
-/// for issue 24's whole-cell commit (a cell cut by the end of a step is moved whole from its
-/// node state; this 6-cell grid with 0.5 ms steps cuts every cell): the values before it
-/// differed by up to 1.1e-02 (F_x), 1.1e-02 (P_fric), 1.8e-02 (the T_max rise), 1.5e-02 (M_z), 0.0e+00 (area fractions);
-/// and again for issue 24's cold crossing (an elastic bristle yields at the yield stress of
-/// its temperature while elastic and heats over the plastic remainder of its move only;
-/// most bristles of this 6-cell grid cross in their first cell, where it acts): the values
-/// before it differed by up to 8.1e-02 (F_x), 8.3e-02 (P_fric), 4.9e-02 (the T_max rise),
-/// 3.7e-01 (M_z, -1.9 N m), 0.19 and 0.60 of the plastic and sliding area fractions;
-/// and again for issue 24's step 6 (strips at the Gauss-Legendre nodes: this grid's 3
-/// strips moved from eta = 0, +-2/3 to 0, +-0.775; the trapezoidal dissipation; the trailing
-/// node; the direction of a crossing bristle's stress): the values before it differed by up
-/// to 5.2e-02 (F_x), 1.1e-01 (P_fric), 2.7e-02 (the T_max rise), 4.3e-01 (M_z), 4.3e-02 (F_y),
-/// 0.17 of an area fraction (absolute).
+/// The outputs (f64 bits, in the order of [`common::OUTPUT_NAMES`], the outputs of that build)
+/// after each of 4 steps of 0.5 ms from the state, with cx = 0.02, 0.04, 0.06, 0.08. The build
+/// that wrote the state continued them bit for bit until the scalar temperature solve of a
+/// softening layer (creep-core engine/softening.rs) replaced the general one for most moves.
+/// The temperature solves converge to 1e-10 relative change of the softening factors
+/// (docs/model.md section 6, "Tolerance of the temperature solve"; was 1e-4, with an
+/// interpolation across brackets up to 15 K wide that biased the forces): these values were
+/// re-recorded then (the ones before differed by up to 3.2e-3 in F_x), and again for the
+/// whole-cell commit (docs/model.md section 3.2: a cell cut by the end of a step is moved whole
+/// from its node state; this 6-cell grid with 0.5 ms steps cuts every cell): the values before
+/// it differed by up to 1.1e-02 (F_x), 1.1e-02 (P_fric), 1.8e-02 (the T_max rise), 1.5e-02
+/// (M_z), 0.0e+00 (area fractions); and again for the cold crossing (docs/model.md section 4,
+/// "Where an adhering bristle yields": an elastic bristle yields at the yield stress of its
+/// temperature while elastic and heats over the plastic remainder of its move only; most
+/// bristles of this 6-cell grid cross in their first cell, where it acts): the values before it
+/// differed by up to 8.1e-02 (F_x), 8.3e-02 (P_fric), 4.9e-02 (the T_max rise), 3.7e-01 (M_z,
+/// -1.9 N m), 0.19 and 0.60 of the plastic and sliding area fractions; and again for the
+/// quadrature of docs/model.md sections 3.1 and 3.4 (strips at the Gauss-Legendre nodes: this
+/// grid's 3 strips moved from eta = 0, +-2/3 to 0, +-0.775; the trapezoidal dissipation; the
+/// trailing node; the direction of a crossing bristle's stress): the values before it differed
+/// by up to 5.2e-02 (F_x), 1.1e-01 (P_fric), 2.7e-02 (the T_max rise), 4.3e-01 (M_z), 4.3e-02
+/// (F_y), 0.17 of an area fraction (absolute).
 /// The continuation is compared within 2e-4 (plus 1 N, 1 N m, 1 W, 1 mK), as creep-core's
 /// test of the two solves does. A state read wrongly would be off by far more.
 const EXPECTED: [[u64; 13]; 4] = [

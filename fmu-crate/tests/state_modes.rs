@@ -1,4 +1,4 @@
-//! FMU states under the importers' call sequences (issue 25): a state restores the mode it was taken in, every state handed out reloads, none is handed out after a failed initialization.
+//! FMU states under the importers' call sequences (docs/fmu.md, "FMU state (rollback, restart)"): a state restores the mode it was taken in, every state handed out reloads, none is handed out after a failed initialization.
 mod common;
 
 use common::{Fmu, ERROR, N_OUTPUTS, OK};
@@ -90,14 +90,14 @@ fn no_state_is_handed_out_after_a_failed_initialization() {
 
 #[test]
 fn every_state_the_fmu_hands_out_reloads() {
-    // the case of issue 25: a Coulomb layer whose compliance grows with temperature took an
-    // infinite plastic slip (sh = inf), which the state reader refused. Its compliance
+    // a Coulomb layer whose compliance grows with temperature once took an infinite plastic
+    // slip (sh = inf), which the state reader refused. Its compliance
     // L_e(T) = L_e_0 exp(0.1 (T - T0)) feeds the release heat back into the temperature
-    // without bound: before issue 24's trapezoidal dissipation the steps reported flash
-    // temperatures of 1e270 degC, now a step can overflow, and the FMU then refuses it with
-    // its non-finite-outputs error. Either way every state it hands out must reload, and
-    // after a refused step fmi2SetFMUstate to the state before it makes the instance usable
-    // again.
+    // without bound: without the trapezoidal dissipation (docs/model.md section 3.4) the steps
+    // reported flash temperatures of 1e270 degC, now a step can overflow, and the FMU then
+    // refuses it with its non-finite-outputs error. Either way every state it hands out must
+    // reload, and after a refused step fmi2SetFMUstate to the state before it makes the
+    // instance usable again.
     let mut a = Fmu::new("modes_reload");
     // on the preset's grid (80 x 21), where this runaway was found: the start value of
     // rel_tol would choose 10 x 3 cells, on which its steady state is not finite (NaN)
@@ -131,8 +131,8 @@ fn every_state_the_fmu_hands_out_reloads() {
         }
         a.free_state(s);
     }
-    // at least the first step runs, so that a state after a step (the case of issue 25) is
-    // among those reloaded
+    // at least the first step runs, so that a state after a step (the case above) is among
+    // those reloaded
     assert!(refused < 6, "every step refused");
 }
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Linker of the macOS FMU binary (rustc's ld64.lld flavour): LLVM's ld64.lld from Debian, exporting only the FMI functions (_fmi2*), with a relative install name.
+# Linker of the macOS FMU binary (rustc's ld64.lld flavour): LLVM's ld64.lld from Debian, exporting only the FMI functions (_fmi2*, _fmi3*), with a relative install name.
 #
 # rustc hands its own exported-symbols list, which also names fmi-sys's `callback_log`; the
 # list is filtered to _fmi2* (the Mach-O counterpart of fmu-crate/exports.map). zig's linker
@@ -14,7 +14,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     -exported_symbols_list)
       [ $# -ge 2 ] || { echo "link-darwin.sh: -exported_symbols_list without a file" >&2; exit 2; }
-      grep -E '^_fmi2[A-Za-z]+$' "$2" > "$2.fmi2" || true
+      grep -E '^_fmi[23][A-Za-z0-9]+$' "$2" > "$2.fmi2" || true
       args+=("$1" "$2.fmi2"); found=1; shift 2 ;;
     -install_name) shift 2 ;;   # replaced below
     -lc|-lm) shift ;;           # both are libSystem on macOS

@@ -238,12 +238,12 @@ impl Config {
             cfg.grid = g;
         }
         if let Some(name) = &raw.scheme {
-            cfg.scheme = crate::engine::Scheme::by_name(name).ok_or_else(|| {
+            cfg.scheme = crate::scheme::Scheme::by_name(name).ok_or_else(|| {
                 cfg_err(
                     src,
                     format!(
                         "scheme: '{name}' is not a scheme (expected {})",
-                        crate::engine::Scheme::NAMES
+                        crate::scheme::Scheme::NAMES
                     ),
                 )
             })?;
@@ -304,7 +304,7 @@ impl Config {
                     params: Params::default(),
                     bound: Bound::Elliptic,
                     grid: DEFAULT_GRID,
-                    scheme: crate::engine::Scheme::default_for(model),
+                    scheme: model.default_scheme(),
                     temperature_solve: crate::thermal::TemperatureSolve::default(),
                     geometry: DEFAULT_GEOMETRY,
                     modifiers: Vec::new(),

@@ -1,13 +1,13 @@
 //! Advancing the bristles: one bristle move with its local temperature (Eq. 4.16, 4.21, 4.35), sub-steps of a strip, the march of new bristles.
 
 use super::kin::{trapezoid_stress, Kin};
+use super::law::Mover;
 use super::strip::Strip;
-use super::Contact;
 use crate::bristle::{self, BristleState};
 use crate::material::NodeP;
 use crate::thermal::{StepFactors, N_KERNEL};
 
-/// The edge of the contact a graded move ends at ([`Contact::graded_moves`]).
+/// The edge of the contact a graded move ends at ([`Mover::graded_moves`]).
 #[derive(Clone, Copy)]
 enum Edge {
     Leading,
@@ -21,12 +21,7 @@ const FAC_CACHE: usize = 8;
 /// ([`super::Scheme::CellsHigher`]), graded at (i/EDGE_SUB)^2 of the move.
 pub const EDGE_SUB: usize = 4;
 
-impl Contact {
-    #[inline]
-    pub(super) fn idx(&self, j: usize, slot: usize) -> usize {
-        j * (self.nx + 1) + (self.head[j] + slot) % (self.nx + 1)
-    }
-
+impl Mover<'_> {
     /// One sub-step of strip `sp`: bristles move by `dist` (m) in time `h` (s); the phase is
     /// advanced by the caller. Nodes are evaluated at their end-of-sub-step positions.
     pub(super) fn substep_strip(
@@ -51,20 +46,20 @@ impl Contact {
         skip: usize,
         end: usize,
     ) {
-        let (nx, j) = (self.nx, sp.j);
-        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let (nx, j) = (self.lat.nx, sp.j);
+        let dxi = 2.0 * self.lat.ell[j] / nx as f64;
         let fac = self.factors(sp.fac, kin.h, kin.heat);
         let inside = if phase_end > 0.0 { nx } else { nx + 1 };
         // the moves start on the lattice nodes where the bristles are at their node states
         // (whole-cell commit): the move covers phase_end of a cell. Not so after the node
         // states were reset where the bristles stand (a reversal, a lift-off, an old state)
         let from_nodes =
-            self.start_cache && (kin.dist / self.patch.a - phase_end * dxi).abs() <= 1e-9 * dxi;
+            self.law.start_cache && (kin.dist / self.patch.a - phase_end * dxi).abs() <= 1e-9 * dxi;
         if phase_end == 1.0 {
             // full-cell moves end on the lattice nodes: their pressure parts are cached
             self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
             for slot in skip..inside.min(end) {
-                let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
+                let xi = self.lat.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
                 // the move's start node (higher-order rules): lattice node `slot`, cached
@@ -75,12 +70,12 @@ impl Contact {
         } else {
             // partial moves from the lattice nodes: the start node's pressure parts
             // (higher-order rules) are cached
-            let from_nodes = self.ho && from_nodes;
+            let from_nodes = self.law.ho && from_nodes;
             if from_nodes {
                 self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
             }
             for slot in skip..inside.min(end) {
-                let xi = self.ell[j] - (slot as f64 + phase_end) * dxi;
+                let xi = self.lat.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
                 let np0 = (from_nodes && slot > 0).then(|| &sp.nodes[slot]);
@@ -97,13 +92,13 @@ impl Contact {
         h: f64,
         heat: bool,
     ) -> StepFactors {
-        if !(self.r.temperature && heat) {
+        if !(self.law.r.on.temperature && heat) {
             return StepFactors::identity(h);
         }
         if let Some((_, f)) = cache.iter().find(|(hh, _)| *hh == h) {
             return *f;
         }
-        let f = self.kernel.factors(h);
+        let f = self.law.kernel.factors(h);
         if cache.len() >= FAC_CACHE {
             cache.remove(0);
         }
@@ -129,11 +124,11 @@ impl Contact {
         s: &mut BristleState,
         acc: &mut [f64; N_KERNEL],
     ) {
-        let dxi = 2.0 * self.ell[j] / self.nx as f64;
-        let np = self.r.node_p(
-            &self.patch,
-            xi_end.max(-self.ell[j] + super::grid::TRAILING_NODE * dxi),
-            self.eta[j],
+        let dxi = 2.0 * self.lat.ell[j] / self.lat.nx as f64;
+        let np = self.law.r.node_p(
+            self.patch,
+            xi_end.max(-self.lat.ell[j] + super::grid::TRAILING_NODE * dxi),
+            self.lat.eta[j],
         );
         self.move_bristle_with(j, xi_end, &np, np0, kin, fac, s, acc);
     }
@@ -144,7 +139,7 @@ impl Contact {
     /// higher-order rules only). Under the higher-order rules the move that starts at the
     /// leading edge is made of [`EDGE_SUB`] sub-moves ending at (i/EDGE_SUB)^2 of it: the
     /// pressure rises like sqrt(s) there and the layer yields and heats within the first
-    /// cell (docs/model.md section 9, step 8).
+    /// cell (docs/model.md section 3.3).
     #[inline]
     #[allow(clippy::too_many_arguments)]
     fn move_bristle_with(
@@ -160,18 +155,18 @@ impl Contact {
     ) {
         let a = self.patch.a;
         let xi0 = xi_end + kin.dist / a;
-        if self.ho && xi0 >= self.ell[j] - 1e-12 && kin.h > 0.0 {
+        if self.law.ho && xi0 >= self.lat.ell[j] - 1e-12 && kin.h > 0.0 {
             self.graded_moves(j, xi0, xi_end, Some(np), kin, Edge::Leading, s, acc);
             return;
         }
         // the move that ends at the trailing edge under the higher-order rules, with heat: the
         // temperatures along it from sub-moves graded toward the edge (below)
-        let dxi = 2.0 * self.ell[j] / self.nx as f64;
-        let trailing = self.ho
-            && self.r.temperature
+        let dxi = 2.0 * self.lat.ell[j] / self.lat.nx as f64;
+        let trailing = self.law.ho
+            && self.law.r.on.temperature
             && kin.heat
             && kin.h > 0.0
-            && xi_end <= -self.ell[j] + 1e-9 * dxi;
+            && xi_end <= -self.lat.ell[j] + 1e-9 * dxi;
         let start = if trailing { Some((*s, *acc)) } else { None };
         self.move_bristle_one(j, xi_end, np, np0_cached, kin, fac, s, acc);
         // the trailing node's temperature: the highest the bristle reaches over its last cell
@@ -193,12 +188,12 @@ impl Contact {
     /// [`EDGE_SUB`] sub-moves graded toward that edge, where the pressure goes like the square
     /// root of the distance from it. *Leading*: the sub-moves end at (i/EDGE_SUB)^2 of the
     /// move, the last one on the end node `np_end`; the layer yields and heats within the
-    /// first cell (docs/model.md section 9, step 8). *Trailing*: they end at
+    /// first cell (docs/model.md section 3.3). *Trailing*: they end at
     /// 1 - (1 - i/EDGE_SUB)^2 of it, the last one's material [`super::grid::TRAILING_NODE`] of
     /// its own length inside the edge; the falling pressure lets the layer release its stress
     /// within the last cell, and that release heats the bristle to the contact's highest
-    /// temperature (the caller keeps only the temperature: docs/model.md section 9, issue 24
-    /// step 13). Returns the highest temperature at the sub-moves' ends, degC. The sub-moves'
+    /// temperature (the caller keeps only the temperature: docs/model.md section 3.3).
+    /// Returns the highest temperature at the sub-moves' ends, degC. The sub-moves'
     /// kernel factors come from one exp and expm1 per term (the two gradings have the same
     /// sub-move lengths, in reverse).
     #[allow(clippy::too_many_arguments)]
@@ -214,7 +209,7 @@ impl Contact {
         acc: &mut [f64; N_KERNEL],
     ) -> f64 {
         let (a, n) = (self.patch.a, EDGE_SUB);
-        let dxi = 2.0 * self.ell[j] / self.nx as f64;
+        let dxi = 2.0 * self.lat.ell[j] / self.lat.nx as f64;
         let frac = |i: usize| match edge {
             Edge::Leading => {
                 let f = i as f64 / n as f64;
@@ -225,8 +220,8 @@ impl Contact {
                 1.0 - f * f
             }
         };
-        let heat = self.r.temperature && kin.heat;
-        let graded = heat.then(|| self.kernel.graded_factors::<EDGE_SUB>(kin.h));
+        let heat = self.law.r.on.temperature && kin.heat;
+        let graded = heat.then(|| self.law.kernel.graded_factors::<EDGE_SUB>(kin.h));
         // sub-move i starts where i - 1 ended: its start node is that one's end node
         let mut np_prev: Option<NodeP> = None;
         let mut peak = f64::NEG_INFINITY;
@@ -261,13 +256,16 @@ impl Contact {
                         Edge::Leading => super::grid::TRAILING_NODE * dxi,
                         Edge::Trailing => super::grid::TRAILING_NODE * d / a,
                     };
-                    self.r
-                        .node_p(&self.patch, xe.max(-self.ell[j] + inside), self.eta[j])
+                    self.law.r.node_p(
+                        self.patch,
+                        xe.max(-self.lat.ell[j] + inside),
+                        self.lat.eta[j],
+                    )
                 }
             };
             self.move_bristle_one(j, xe, &npi, np_prev.as_ref(), &ki, &fi, s, acc);
             peak = peak.max(s.temp);
-            np_prev = self.start_cache.then_some(npi);
+            np_prev = self.law.start_cache.then_some(npi);
         }
         peak
     }
@@ -290,21 +288,21 @@ impl Contact {
         let y = if self.patch.line {
             0.0
         } else {
-            self.eta[j] * self.patch.b
+            self.lat.eta[j] * self.patch.b
         };
         let x_mid = a * (xi_end + 0.5 * kin.dist / a);
         // the higher-order rules' start node: pressure parts at the start of the move, clamped
         // as the end node is
-        let np0 = self.ho.then(|| match np0_cached {
+        let np0 = self.law.ho.then(|| match np0_cached {
             Some(n0) => *n0,
             None => {
-                let dxi = 2.0 * self.ell[j] / self.nx as f64;
-                let xi0 =
-                    (xi_end + kin.dist / a).max(-self.ell[j] + super::grid::TRAILING_NODE * dxi);
-                self.r.node_p(&self.patch, xi0, self.eta[j])
+                let dxi = 2.0 * self.lat.ell[j] / self.lat.nx as f64;
+                let xi0 = (xi_end + kin.dist / a)
+                    .max(-self.lat.ell[j] + super::grid::TRAILING_NODE * dxi);
+                self.law.r.node_p(self.patch, xi0, self.lat.eta[j])
             }
         });
-        if self.fast.cold {
+        if self.law.fast.cold {
             self.update_bristle_cold(kin, np, np0.as_ref(), [x_mid, y], s);
         } else {
             self.update_bristle(kin, np, np0.as_ref(), [x_mid, y], s, acc, fac);
@@ -324,14 +322,14 @@ impl Contact {
         s: &mut BristleState,
     ) {
         let du = k.rigid_slip([x, y]);
-        let m = self.r.material_base(np, k.t_bulk);
+        let m = self.law.r.material_base(np, k.t_bulk);
         let (lxe, lye, dtau) = k.flex(m.le, [x, y]);
         let old = s.tau;
         match np0 {
             // the higher-order rules: tau_c2 and L_p from the start node's to the end node's
-            Some(np0) if self.r.rule == bristle::Rule::SameCharacteristic => {
+            Some(np0) if self.law.r.on.rule == bristle::Rule::SameCharacteristic => {
                 let mv = bristle::Move::new(s, du);
-                let m0 = self.r.material_base(np0, k.t_bulk);
+                let m0 = self.law.r.material_base(np0, k.t_bulk);
                 mv.set_along(bristle::Along {
                     tc2_start: m0.tc2,
                     lp_start: m0.lp,
@@ -339,13 +337,13 @@ impl Contact {
                 });
                 bristle::update_move(s, &mv, dtau, &m, [lxe, lye]);
             }
-            _ => bristle::update(s, du, dtau, &m, [lxe, lye], self.r.rule),
+            _ => bristle::update(s, du, dtau, &m, [lxe, lye], self.law.r.on.rule),
         }
         s.q = if k.heat {
             let dux = du[0] - lxe * (s.tau[0] - old[0]);
             let duy = du[1] - lye * (s.tau[1] - old[1]);
             let tw = trapezoid_stress(s.tau, old);
-            (self.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0)
+            (self.law.r.kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0)
         } else {
             0.0
         };
@@ -355,15 +353,15 @@ impl Contact {
     /// Pressure parts of the lattice nodes k = 1..=nx of strip `j` at the current load in
     /// `nodes`, cached: recomputed when the peak pressure `p0` they belong to changes.
     pub(super) fn lattice_nodes(&self, j: usize, nodes: &mut Vec<NodeP>, p0: &mut f64) {
-        let nx = self.nx;
+        let nx = self.lat.nx;
         if *p0 != self.patch.p0 || nodes.len() != nx + 1 {
-            let dxi = 2.0 * self.ell[j] / nx as f64;
+            let dxi = 2.0 * self.lat.ell[j] / nx as f64;
             nodes.clear();
             nodes.push(NodeP::default());
             for k in 1..=nx {
-                let xi = (self.ell[j] - k as f64 * dxi)
-                    .max(-self.ell[j] + super::grid::TRAILING_NODE * dxi);
-                nodes.push(self.r.node_p(&self.patch, xi, self.eta[j]));
+                let xi = (self.lat.ell[j] - k as f64 * dxi)
+                    .max(-self.lat.ell[j] + super::grid::TRAILING_NODE * dxi);
+                nodes.push(self.law.r.node_p(self.patch, xi, self.lat.eta[j]));
             }
             *p0 = self.patch.p0;
         }
@@ -374,8 +372,8 @@ impl Contact {
     /// the strip's phase. Same updates, positions and sub-step lengths as the sub-step loop.
     pub(super) fn march_new(&self, sp: &mut Strip, count: usize, d_end: f64) {
         let j = sp.j;
-        let dx = 2.0 * self.ell[j] * self.patch.a / self.nx as f64;
-        let dxi = 2.0 * self.ell[j] / self.nx as f64;
+        let dx = 2.0 * self.lat.ell[j] * self.patch.a / self.lat.nx as f64;
+        let dxi = 2.0 * self.lat.ell[j] / self.lat.nx as f64;
         let phase_end = *sp.phase;
         // With v = 0 (the steady march at standstill) the march is over distance only and
         // carries no heat: the v -> 0 limit.
@@ -389,12 +387,12 @@ impl Contact {
             ..BristleState::default()
         };
         let mut acc = [0.0; N_KERNEL];
-        if d_end == 0.0 && self.coulomb_path() {
+        if d_end == 0.0 && self.law.coulomb_path() {
             self.march_coulomb(sp, count, &kin_full);
             return;
         }
         // without temperature the accumulators stay zero: no copies
-        let hot = self.r.temperature;
+        let hot = self.law.r.on.temperature;
         self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
         let nodes = &*sp.nodes;
         for k in 0..count {
@@ -403,12 +401,12 @@ impl Contact {
             sp.node_st[id] = s;
             sp.node_acc[id] = acc;
             // slot nx is past the trailing edge once the phase is > 0: not moved (as in the loop)
-            if d_end > 0.0 && k < self.nx {
+            if d_end > 0.0 && k < self.lat.nx {
                 let (mut ps, mut pacc) = (s, acc);
                 self.move_bristle(
                     j,
-                    self.ell[j] - (k as f64 + phase_end) * dxi,
-                    (self.start_cache && k > 0).then(|| &nodes[k]),
+                    self.lat.ell[j] - (k as f64 + phase_end) * dxi,
+                    (self.law.start_cache && k > 0).then(|| &nodes[k]),
                     &kin_part,
                     &fac_part,
                     &mut ps,
@@ -427,9 +425,9 @@ impl Contact {
             if k + 1 < count {
                 self.move_bristle_with(
                     j,
-                    self.ell[j] - (k as f64 + 1.0) * dxi,
+                    self.lat.ell[j] - (k as f64 + 1.0) * dxi,
                     &nodes[k + 1],
-                    (self.start_cache && k > 0).then(|| &nodes[k]),
+                    (self.law.start_cache && k > 0).then(|| &nodes[k]),
                     &kin_full,
                     &fac_full,
                     &mut s,
@@ -439,33 +437,25 @@ impl Contact {
         }
     }
 
-    /// True if the dedicated FASTSIM march applies: the configuration lies within what
-    /// [`super::FastPath::Coulomb`] supports (engine/fastpath.rs `COULOMB`; the `fastsim`
-    /// preset).
-    #[inline]
-    pub(super) fn coulomb_path(&self) -> bool {
-        self.fast.coulomb && !self.ho
-    }
-
-    /// The march of [`Self::march_new`] at phase 0 for FASTSIM (see [`Self::coulomb_path`]):
+    /// The march of [`Self::march_new`] at phase 0 for FASTSIM (see [`Law::coulomb_path`](super::law::Law::coulomb_path)):
     /// Kalker's brush with the radial return onto the Coulomb bound mu p, in one tight loop
     /// with the same operations as [`bristle::update`] for tc1 = tc2 = mu p and L_e = 0
     /// (results equal the general path to rounding: reciprocals are multiplied, not divided).
     fn march_coulomb(&self, sp: &mut Strip, count: usize, kin: &Kin) {
-        let (nx, j) = (self.nx, sp.j);
+        let (nx, j) = (self.lat.nx, sp.j);
         self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
         let nodes = &*sp.nodes;
         let a = self.patch.a;
-        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let dxi = 2.0 * self.lat.ell[j] / nx as f64;
         let y = if self.patch.line {
             0.0
         } else {
-            self.eta[j] * self.patch.b
+            self.lat.eta[j] * self.patch.b
         };
         let d = kin.dist;
         let (ilx, ily, ils) = (1.0 / kin.lx, 1.0 / kin.ly, 1.0 / kin.ls);
         let (lx, ly) = (kin.lx, kin.ly);
-        let inv_h = if kin.heat { self.r.kq / kin.h } else { 0.0 };
+        let inv_h = if kin.heat { self.law.r.kq / kin.h } else { 0.0 };
         // increments that do not depend on the position along the strip
         let du0 = d * (kin.cx - kin.cs * y);
         let dt0 = d * (kin.cx * ilx - kin.cs * y * ils);
@@ -478,7 +468,7 @@ impl Contact {
             if k + 1 >= count {
                 break;
             }
-            let xi_end = self.ell[j] - (k as f64 + 1.0) * dxi;
+            let xi_end = self.lat.ell[j] - (k as f64 + 1.0) * dxi;
             let x = a * (xi_end + 0.5 * d / a);
             let du = [du0, d * (kin.cy + kin.cs * x)];
             let dtau = [dt0, d * (kin.cy * ily + kin.cs * x * ils)];
@@ -514,8 +504,8 @@ impl Contact {
 
     /// A new bristle enters the strip: the oldest slot is recycled at the leading edge.
     pub(super) fn enter_bristle(&self, sp: &mut Strip) {
-        let nx1 = self.nx + 1;
-        *sp.head = (*sp.head + self.nx) % nx1;
+        let nx1 = self.lat.nx + 1;
+        *sp.head = (*sp.head + self.lat.nx) % nx1;
         let id = sp.slot(0);
         sp.st[id] = BristleState {
             temp: self.inputs.t_bulk,
@@ -527,14 +517,14 @@ impl Contact {
     }
 }
 
-impl Contact {
+impl Mover<'_> {
     /// A step of `dt` that rolls past the whole contact (v dt >= 2a): every bristle enters
     /// during it, so the strip is the steady march of the step's inputs, ending at the
     /// strip's new phase (the entries are counted in closed form: bounded work however long
     /// the step or small the contact).
     pub(super) fn march_all(&self, sp: &mut Strip, dt: f64) {
         let dist = self.inputs.v * dt;
-        let dx = 2.0 * self.ell[sp.j] * self.patch.a / self.nx as f64;
+        let dx = 2.0 * self.lat.ell[sp.j] * self.patch.a / self.lat.nx as f64;
         let cells = *sp.phase + dist / dx;
         let ph = (cells - (cells + 1e-9).floor()).max(0.0);
         let ph = if ph < 1e-9 { 0.0 } else { ph };
@@ -542,7 +532,7 @@ impl Contact {
         *sp.phase = ph;
         *sp.part = super::Partial::default();
         self.add_part(sp.part, ph * dx);
-        self.march_new(sp, self.nx + 1, ph * dx);
+        self.march_new(sp, self.lat.nx + 1, ph * dx);
     }
 
     /// [`super::Scheme::Continuous`]: advances the strip by `dt` (0 < v dt < 2a). The bristles
@@ -558,7 +548,7 @@ impl Contact {
     pub(super) fn advance_continuous(&self, sp: &mut Strip, dt: f64) {
         let v = self.inputs.v;
         let a = self.patch.a;
-        let nx = self.nx;
+        let nx = self.lat.nx;
         let j = sp.j;
         let dist = v * dt;
         let d_max = super::MAX_SUBSTEP_CELLS * 2.0 * a / nx as f64;
@@ -567,8 +557,8 @@ impl Contact {
         let parts = |len: f64, max: f64| ((len / max) * (1.0 - 1e-12)).ceil().max(1.0);
         let n_sub_eff = parts(dist, d_max);
         let (h, d) = (dt / n_sub_eff, dist / n_sub_eff);
-        let dx = 2.0 * self.ell[j] * a / nx as f64;
-        let dxi = 2.0 * self.ell[j] / nx as f64;
+        let dx = 2.0 * self.lat.ell[j] * a / nx as f64;
+        let dxi = 2.0 * self.lat.ell[j] / nx as f64;
         // a sub-step of n > 1 cells dissipates at the trapezoid of its start and end
         // stresses, as every move does (kin::trapezoid_stress): n one-cell moves sum to that,
         // to second order
@@ -589,7 +579,7 @@ impl Contact {
             let rest_fac = self.factors(sp.fac, hr, rest.heat);
             (fine, fine_fac, rest, rest_fac)
         });
-        let edge = -self.ell[j] + super::EDGE_CELLS * dxi;
+        let edge = -self.lat.ell[j] + super::EDGE_CELLS * dxi;
         let n_sub = n_sub_eff as usize;
         let ph0 = *sp.phase;
         let cells = ph0 + dist / dx;
@@ -612,7 +602,7 @@ impl Contact {
                 if slot + wraps == nx && phase_end > 0.0 {
                     continue;
                 }
-                let xi0 = self.ell[j] - (slot as f64 + ph0) * dxi;
+                let xi0 = self.lat.ell[j] - (slot as f64 + ph0) * dxi;
                 let id = sp.slot(slot);
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
                 for i in 1..=n_sub {

@@ -1,7 +1,7 @@
-//! One bristle's move over a sub-step: the bristle law (Sec. 4.1) under the local temperature solve (Eq. 4.35), and where an adhering bristle yields (the cold crossing, docs/model.md section 9 step 5).
+//! One bristle's move over a sub-step: the bristle law (Sec. 4.1) under the local temperature solve (Eq. 4.35), and where an adhering bristle yields (the cold crossing, docs/model.md section 4).
 
 use super::kin::{trapezoid_stress, Kin};
-use super::Contact;
+use super::law::Mover;
 use crate::bristle::{self, BristleState, Material};
 use crate::material::NodeP;
 use crate::thermal::{self, StepFactors, N_KERNEL};
@@ -37,7 +37,7 @@ fn lerp(a: &BristleState, b: &BristleState, w: f64) -> Option<BristleState> {
 /// law takes from the move whatever the trial temperature, and the reference of the damped
 /// release.
 struct TrialMove<'a> {
-    c: &'a Contact,
+    c: &'a Mover<'a>,
     k: &'a Kin,
     /// The pressure parts at the end of the move.
     np: &'a NodeP,
@@ -85,7 +85,7 @@ impl TrialMove<'_> {
     fn trial(&self, t: f64) -> (BristleState, f64) {
         let m = match self.m_hist {
             Some(m) if t == self.t_hist => m,
-            _ => self.c.material(self.np, t, self.u_abs, self.slip),
+            _ => self.c.law.material(self.np, t, self.u_abs, self.slip),
         };
         let (lxe, lye, dtau) = match self.fixed {
             Some(f) => f,
@@ -94,7 +94,7 @@ impl TrialMove<'_> {
         let mut ns = self.old;
         match &self.mv {
             Some(mv) => bristle::update_move(&mut ns, mv, dtau, &m, [lxe, lye]),
-            None => bristle::update(&mut ns, self.du, dtau, &m, [lxe, lye], self.c.r.rule),
+            None => bristle::update(&mut ns, self.du, dtau, &m, [lxe, lye], self.c.law.r.on.rule),
         }
         let q = if self.k.heat {
             self.heat(&mut ns, [lxe, lye])
@@ -125,7 +125,7 @@ impl TrialMove<'_> {
         let dux = du[0] - lxe * (tr[0] - old.tau[0]);
         let duy = du[1] - lye * (tr[1] - old.tau[1]);
         let tw = trapezoid_stress(ns.tau, old.tau);
-        let kq = self.c.r.kq;
+        let kq = self.c.law.r.kq;
         let qbar = (kq * (tw[0] * dux + tw[1] * duy) / k.h).max(0.0);
         if self.ho {
             // the heat rate linear over the move from the start stress's to the end
@@ -145,25 +145,25 @@ impl TrialMove<'_> {
     /// crosses at the yield stress of its temperature while elastic, t_hist, and its heat
     /// flows only over the plastic remainder (1 - lambda) h of the move, so that its
     /// self-heating is 2 alpha C q sqrt(h) / sqrt(1 - lambda) for the move's mean heat
-    /// density q (docs/model.md, section 9). Sets the move's cold yield, `self_c` and the
+    /// density q (docs/model.md section 4). Sets the move's cold yield, `self_c` and the
     /// material at t_hist of such a bristle under the same-characteristic rule with heat.
     #[inline]
     fn set_cold_crossing(&mut self) {
         let (c, k, np, old) = (self.c, self.k, self.np, self.old);
         if !(self.mv.is_some()
-            && c.r.temperature
+            && c.law.r.on.temperature
             && k.heat
             && old.regime == bristle::Regime::Elastic)
         {
             return;
         }
         let (t_hist, u_abs, slip) = (self.t_hist, self.u_abs, self.slip);
-        let m = c.material(np, t_hist, u_abs, slip);
+        let m = c.law.material(np, t_hist, u_abs, slip);
         let dtau = match self.fixed {
             Some(f) => f.2,
             None => self.flex(m.le).2,
         };
-        let tc1_of = |p: &NodeP| c.material(p, t_hist, u_abs, slip).tc1;
+        let tc1_of = |p: &NodeP| c.law.material(p, t_hist, u_abs, slip).tc1;
         let tc1 = c.crossing_yield(k, np, self.xy, [old.tau, dtau], m.tc1, tc1_of);
         if let Some(mv) = self.mv.as_mut() {
             let lam = mv.set_cold_yield(&old, dtau, tc1);
@@ -174,7 +174,7 @@ impl TrialMove<'_> {
         self.m_hist = Some(m);
     }
 
-    /// The higher-order rules (docs/model.md section 9, step 8): the start material is the
+    /// The higher-order rules (docs/model.md section 3.3): the start material is the
     /// start node `np0`'s at the bristle's temperature at the start of the move, the same for
     /// every trial temperature; the temperature profile's sqrt(s) part is the self-heating of
     /// the jump of the heat rate at the start of the move, from the old stress over the rigid
@@ -185,8 +185,8 @@ impl TrialMove<'_> {
             return;
         };
         let c = self.c;
-        let m0 = c.material(np0, self.old.temp, self.u_abs, self.slip);
-        let lp_sqrt = if c.r.temperature && self.k.heat {
+        let m0 = c.law.material(np0, self.old.temp, self.u_abs, self.slip);
+        let lp_sqrt = if c.law.r.on.temperature && self.k.heat {
             c.lp_sqrt(self.k, self.self_c, &self.old, self.du)
         } else {
             f64::NAN
@@ -204,8 +204,8 @@ impl TrialMove<'_> {
     /// end temperature for a heat that goes on. At t_hist instead, colder by the previous
     /// move's own heat (O(sqrt h)), the damped release took the stress change of that
     /// cooling, which outweighs the move's heat (O(h)): on fine grids a bristle riding on
-    /// tau_c1 jumped off it and the sliding zone lost heat (docs/model.md, section 9, step
-    /// 10). Under the higher-order rules (`higher_order`) the temperature of the previous
+    /// tau_c1 jumped off it and the sliding zone lost heat (docs/model.md section 6).
+    /// Under the higher-order rules (`higher_order`) the temperature of the previous
     /// move is the end-weighted heat's and its history the mean heat's, so on short moves the
     /// predictor misses the bristle's temperature by their difference: there only a riding
     /// bristle takes it. (Measured for the default rule, the same characteristic; elastic
@@ -221,7 +221,7 @@ impl TrialMove<'_> {
         if self.theta < 1.0
             && self.self_c > 0.0
             && old.q > 0.0
-            && self.c.r.rule == bristle::Rule::SameCharacteristic
+            && self.c.law.r.on.rule == bristle::Rule::SameCharacteristic
             && (self.riding || !higher_order)
         {
             let (at_predictor, _) = eval(self.t_hist + self.self_c * old.q);
@@ -243,12 +243,12 @@ impl TrialMove<'_> {
     #[inline]
     fn solve(&self, eval: impl Fn(f64) -> (BristleState, f64) + Copy) -> (BristleState, f64) {
         let (t_hist, self_c, old) = (self.t_hist, self.self_c, &self.old);
-        let temperature = self.c.r.temperature;
-        let t_tol = self.c.t_tol;
+        let temperature = self.c.law.r.on.temperature;
+        let t_tol = self.c.law.t_tol;
         let sliding = |s: &BristleState| s.regime == bristle::Regime::Sliding;
         let from_predictor = temperature && self_c > 0.0 && old.q > 0.0 && self.theta == 1.0;
         if from_predictor
-            && self.c.t_solve == thermal::TemperatureSolve::PredictorCorrector
+            && self.c.law.t_solve == thermal::TemperatureSolve::PredictorCorrector
             && old.regime != bristle::Regime::Elastic
         {
             // the cheaper solve where it applies (thermal::solve_predictor_corrector): a
@@ -260,7 +260,7 @@ impl TrialMove<'_> {
                 t_hist,
                 self_c,
                 q_pred,
-                self.c.pc_miss,
+                self.c.law.pc_miss,
                 eval,
                 lerp,
                 on_branch,
@@ -284,7 +284,7 @@ impl TrialMove<'_> {
     }
 }
 
-impl Contact {
+impl Mover<'_> {
     /// Advances one bristle by one sub-step; returns its heat density q (W/m^2, both bodies).
     /// `np0`: the pressure parts at the start of the move under the higher-order rules
     /// ([`super::Scheme::CellsHigher`]), None otherwise.
@@ -305,7 +305,7 @@ impl Contact {
         let warm = acc[0] != 0.0;
         let t_hist = self.t_hist(k, acc, fac);
         // a layer that only softens as it heats: the scalar solve (module `softening`)
-        if self.softening_fast && k.heat {
+        if self.law.fast.softening && k.heat {
             if let Some(q) = self.update_softening(k, np, np0, [x, y], du, t_hist, s, acc, fac) {
                 return q;
             }
@@ -318,7 +318,7 @@ impl Contact {
         let eval = |t: f64| tm.trial(t);
         tm.seed_release_reference(np0.is_some(), eval);
         let (mut ns, q) = tm.solve(eval);
-        ns.temp = if self.r.temperature {
+        ns.temp = if self.law.r.on.temperature {
             t_hist + tm.self_c * q
         } else {
             k.t_bulk
@@ -328,7 +328,7 @@ impl Contact {
         let q = if tm.ho && k.heat && q > 0.0 { ns.q } else { q };
         ns.q = q;
         *s = ns;
-        if self.r.temperature && k.heat && (warm || q > 0.0) {
+        if self.law.r.on.temperature && k.heat && (warm || q > 0.0) {
             fac.accumulate(acc, q); // alpha is folded into alpha_c
         }
         q
@@ -359,21 +359,21 @@ impl Contact {
         // A plastic bristle below the yield stress tau_c1 of its heat history's temperature
         // may ride on tau_c1 in this move (the floor of the law, `bristle::update`), where its
         // heat follows tau_c1(T): the release weight then bounds tau_c1's temperature
-        // coefficient too (docs/model.md, section 9, step 10). The material at t_hist is the
+        // coefficient too (docs/model.md section 6). The material at t_hist is the
         // solve's first evaluation, kept for it.
-        let m_plastic = (self.r.temperature
+        let m_plastic = (self.law.r.on.temperature
             && k.heat
             && old.regime == bristle::Regime::Plastic
-            && self.r.rule == bristle::Rule::SameCharacteristic)
-            .then(|| self.material(np, t_hist, u_abs, slip));
+            && self.law.r.on.rule == bristle::Rule::SameCharacteristic)
+            .then(|| self.law.material(np, t_hist, u_abs, slip));
         let riding = m_plastic.is_some_and(|m| bristle::norm(old.tau) < m.tc1);
         let theta = self.release_weight(k, np, old.tau, riding);
         // Without a temperature coefficient of L_e (every preset) and without formula
         // effects, material_base gives L_e = the node's (divided by exactly 1): the same for
         // every trial temperature, so this is computed once per move, not per evaluation.
-        let fixed = self.fast.fixed_le.then(|| k.flex(np.le, xy));
+        let fixed = self.law.fast.fixed_le.then(|| k.flex(np.le, xy));
         // the law's material-independent parts of this move, shared by all evaluations
-        let mv = (self.r.rule == bristle::Rule::SameCharacteristic)
+        let mv = (self.law.r.on.rule == bristle::Rule::SameCharacteristic)
             .then(|| bristle::Move::new(&old, du));
         TrialMove {
             c: self,
@@ -402,19 +402,19 @@ impl Contact {
     /// mean heat).
     #[inline]
     pub(super) fn lp_sqrt(&self, k: &Kin, self_c: f64, old: &BristleState, du: [f64; 2]) -> f64 {
-        self.r.lp_t * self_c * (self.start_heat(k, old, du) - old.q)
+        self.law.r.lp_t * self_c * (self.start_heat(k, old, du) - old.q)
     }
 
     /// The heat rate (W/m^2) of bristle `old`'s stress over the rigid slip `du` (m) of its
     /// move: its heat at the start of the move, at least 0.
     #[inline]
     fn start_heat(&self, k: &Kin, old: &BristleState, du: [f64; 2]) -> f64 {
-        (self.r.kq * (old.tau[0] * du[0] + old.tau[1] * du[1]) / k.h).max(0.0)
+        (self.law.r.kq * (old.tau[0] * du[0] + old.tau[1] * du[1]) / k.h).max(0.0)
     }
 
     /// The predictor of the predictor-corrector's heat density (W/m^2) for the move of bristle
     /// `old` by the rigid slip `du` (m): its heat at the start of the move
-    /// ([`Contact::start_heat`]), which follows the move's own slip and misses the move's heat
+    /// ([`Mover::start_heat`]), which follows the move's own slip and misses the move's heat
     /// by 3-10 times less than the previous move's heat `old.q` (which stands in where the
     /// start's is 0).
     #[inline]
@@ -431,7 +431,7 @@ impl Contact {
     /// Eq. 4.35), degC; the bulk temperature for a cold history or without heat.
     #[inline]
     fn t_hist(&self, k: &Kin, acc: &[f64; N_KERNEL], fac: &StepFactors) -> f64 {
-        if self.r.temperature && k.heat && acc[0] != 0.0 {
+        if self.law.r.on.temperature && k.heat && acc[0] != 0.0 {
             k.t_bulk + k.alpha_c * fac.history(acc)
         } else {
             k.t_bulk
@@ -449,13 +449,13 @@ impl Contact {
     /// ([`crate::material::Resolved::release_t_riding`]).
     #[inline]
     pub(super) fn release_weight(&self, k: &Kin, np: &NodeP, tau: [f64; 2], riding: bool) -> f64 {
-        if !(k.heat && self.r.temperature) {
+        if !(k.heat && self.law.r.on.temperature) {
             return 1.0;
         }
         let cmax = if riding {
-            self.r.release_t_riding()
+            self.law.r.release_t_riding()
         } else {
-            self.r.release_t()
+            self.law.r.release_t()
         };
         let t0 = (tau[0] * tau[0] + tau[1] * tau[1]).sqrt().max(1.0);
         let gain = k.self_c * t0 * t0 * (k.lx.max(k.ly) + np.le) * cmax / k.h;
@@ -475,7 +475,7 @@ impl Contact {
     /// pressure grows like the square root of the distance from the edge, so the end node's
     /// tau_c1 overstates the yield stress at the crossing by O(sqrt(dx)), an error of order
     /// 1/2 that the hardening and the heat of the bristle carry downstream (docs/model.md,
-    /// section 9). Elsewhere, or when the trial stays elastic, the end node's tau_c1.
+    /// section 4). Elsewhere, or when the trial stays elastic, the end node's tau_c1.
     fn crossing_yield(
         &self,
         k: &Kin,
@@ -497,11 +497,11 @@ impl Contact {
         let eta = if self.patch.line { 0.0 } else { y / b };
         // the move runs from xi(0) to xi(1) = the end node; x is its midpoint
         let xi = |l: f64| (x + k.dist * (0.5 - l)) / a;
-        let np0 = self.r.node_p(&self.patch, xi(0.0), eta);
+        let np0 = self.law.r.node_p(self.patch, xi(0.0), eta);
         if np0.p >= np.p {
             return tc1_end;
         }
-        let tc1_at = |l: f64| tc1_of(&self.r.node_p(&self.patch, xi(l), eta));
+        let tc1_at = |l: f64| tc1_of(&self.law.r.node_p(self.patch, xi(l), eta));
         // g(l) = |tau(l)| - tc1(l): g(1) > 0; g(0) <= 0 for a bristle below its yield stress.
         // Solved in r = sqrt(l): near the leading edge tc1 rises like sqrt(l), which is
         // singular in l but linear in r, so the regula falsi converges at its usual rate.
@@ -515,7 +515,7 @@ impl Contact {
             return t0;
         }
         // Illinois regula falsi to a crossing within 1e-13 in r, with bisection steps when
-        // it stalls: the outputs must be smooth in the inputs to rounding (issue 25)
+        // it stalls: the outputs must be smooth in the inputs to rounding (docs/model.md section 6)
         // (a bristle entering at the leading edge starts with g(0) = 0, no stress and no
         // strength, and is below its yield stress just after: bisect until g(ra) < 0)
         let mut side = 0;

@@ -15,7 +15,7 @@ use crate::material::Resolved;
 /// A fast path of the bristle engine (see the module's text).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FastPath {
-    /// FASTSIM's march and steady state (`Contact::coulomb_path`, `march_coulomb` in
+    /// FASTSIM's march and steady state (`Law::coulomb_path`, `march_coulomb` in
     /// engine/advance.rs, `steady_coulomb` in engine/steady_coulomb.rs): Kalker's brush with the radial return
     /// onto the Coulomb bound mu p in one tight loop, no heat.
     Coulomb,
@@ -129,7 +129,7 @@ pub(crate) const FIXED_LE: Support = Support {
     ],
     params: (
         "L_e does not depend on T (X_T = 0 or no temperature)",
-        |r| r.le_t == 0.0 || !r.temperature,
+        |r| r.le_t == 0.0 || !r.on.temperature,
     ),
     modifiers: ModifierSupport::None,
 };
@@ -220,25 +220,25 @@ mod tests {
         use crate::bristle::Rule;
         match path {
             FastPath::Coulomb => {
-                r.coulomb
-                    && !r.layer_el
-                    && !r.temperature
-                    && r.rule == Rule::ElasticUnloading
+                r.on.coulomb
+                    && !r.on.layer_el
+                    && !r.on.temperature
+                    && r.on.rule == Rule::ElasticUnloading
                     && !any
             }
             FastPath::Softening => {
-                r.temperature
-                    && r.plastic
-                    && !r.coulomb
+                r.on.temperature
+                    && r.on.plastic
+                    && !r.on.coulomb
                     && r.tc1_t >= 0.0
                     && r.tc2_t >= 0.0
                     && r.lp_t >= 0.0
                     && r.le_t == 0.0
-                    && r.rule == Rule::SameCharacteristic
+                    && r.on.rule == Rule::SameCharacteristic
                     && !local
             }
-            FastPath::FixedLe => !any && (r.le_t == 0.0 || !r.temperature),
-            FastPath::Cold => !(r.temperature || any),
+            FastPath::FixedLe => !any && (r.le_t == 0.0 || !r.on.temperature),
+            FastPath::Cold => !(r.on.temperature || any),
         }
     }
 

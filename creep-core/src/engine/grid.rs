@@ -8,8 +8,8 @@ use super::{Contact, FieldPoint, Outputs};
 /// trapezoidal rule over the nodes, with the edge node's value taken at this offset, is
 /// second order in the cell length (the generalised Euler-Maclaurin expansion of the
 /// trapezoid for sqrt(s): its leading error -zeta(-1/2) h^1.5 is what this node adds);
-/// half a cell, the rule before step 6, overstates the force by 0.15 h^1.5 of p0, at the
-/// edge node the rule would understate it by 0.21 h^1.5 (docs/model.md section 9, step 6).
+/// half a cell overstates the force by 0.15 h^1.5 of p0, at the edge node the rule would
+/// understate it by 0.21 h^1.5 (docs/model.md section 3.4).
 pub(super) const TRAILING_NODE: f64 = 0.172_866_730_280_115;
 
 /// The strips across the contact: `ny` Gauss-Legendre nodes eta_j in (-1, 1) (eta = y/b,
@@ -17,7 +17,7 @@ pub(super) const TRAILING_NODE: f64 = 0.172_866_730_280_115;
 /// strip per unit width is a smooth function of eta inside the contact, and Gauss-Legendre
 /// integrates it to high order where equal strips at their midpoints are second order:
 /// on a dry creepage step 5 strips are within 0.1 % of 81 (equal strips: 2.4 %; docs/model.md
-/// section 9, step 6). Newton on the Legendre recurrence from Chebyshev's guess, to rounding.
+/// section 3.1). Newton on the Legendre recurrence from Chebyshev's guess, to rounding.
 pub(super) fn strip_rule(ny: usize) -> Vec<(f64, f64)> {
     let n = ny as f64;
     let mut out = Vec::with_capacity(ny);
@@ -55,11 +55,16 @@ pub(super) fn strip_rule(ny: usize) -> Vec<(f64, f64)> {
 }
 
 impl Contact {
+    #[inline]
+    pub(super) fn idx(&self, j: usize, slot: usize) -> usize {
+        j * (self.lat.nx + 1) + (self.state.head[j] + slot) % (self.lat.nx + 1)
+    }
+
     /// Quadrature weights (normalized length) of the nodes of strip `j` for its phase.
     pub(super) fn weights(&self, j: usize, w: &mut [f64]) {
-        let nx = self.nx;
-        let dxi = 2.0 * self.ell[j] / nx as f64;
-        let ph = self.phase[j];
+        let nx = self.lat.nx;
+        let dxi = 2.0 * self.lat.ell[j] / nx as f64;
+        let ph = self.state.phase[j];
         for x in w.iter_mut() {
             *x = 0.0;
         }
@@ -74,39 +79,39 @@ impl Contact {
     }
 
     pub(super) fn integrate(&self) -> Outputs {
-        let (a, b) = (self.patch.a, self.patch.b);
-        let nx = self.nx;
+        let (a, b) = (self.load.patch.a, self.load.patch.b);
+        let nx = self.lat.nx;
         let mut w = vec![0.0; nx + 1];
         let (mut fx, mut fy, mut mz, mut pf, mut tsum, mut area) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         let mut fr = [0.0; 3];
         let mut tmax = f64::NEG_INFINITY;
-        for j in 0..self.ny {
+        for j in 0..self.lat.ny {
             self.weights(j, &mut w);
-            let dy = if self.patch.line {
+            let dy = if self.load.patch.line {
                 2.0 * b
             } else {
-                self.deta[j] * b
+                self.lat.deta[j] * b
             };
-            let y = if self.patch.line {
+            let y = if self.load.patch.line {
                 0.0
             } else {
-                self.eta[j] * b
+                self.lat.eta[j] * b
             };
-            let dxi = 2.0 * self.ell[j] / nx as f64;
-            let lead = if self.ho && nx >= 3 {
-                lead_correction(self.phase[j], dxi)
+            let dxi = 2.0 * self.lat.ell[j] / nx as f64;
+            let lead = if self.law.ho && nx >= 3 {
+                lead_correction(self.state.phase[j], dxi)
             } else {
                 [0.0; 2]
             };
             for (slot, wk) in w.iter().enumerate() {
-                let s = &self.st[self.idx(j, slot)];
+                let s = &self.state.st[self.idx(j, slot)];
                 let da = wk * a * dy;
                 // the forces' and the power's weight: with the leading cell's term
                 let df = match slot {
                     1 | 2 => (wk + lead[slot - 1]) * a * dy,
                     _ => da,
                 };
-                let x = a * (self.ell[j] - (slot as f64 + self.phase[j]) * dxi);
+                let x = a * (self.lat.ell[j] - (slot as f64 + self.state.phase[j]) * dxi);
                 fx += s.tau[0] * df;
                 fy += s.tau[1] * df;
                 mz += (x * s.tau[1] - y * s.tau[0]) * df;
@@ -119,7 +124,7 @@ impl Contact {
                 }
             }
         }
-        let fn_n = self.inputs.fn_n;
+        let fn_n = self.state.run.inputs.fn_n;
         let area = area.max(f64::MIN_POSITIVE);
         Outputs {
             fx,
@@ -129,7 +134,7 @@ impl Contact {
             t_max: if tmax.is_finite() {
                 tmax
             } else {
-                self.inputs.t_bulk
+                self.state.run.inputs.t_bulk
             },
             t_mean: tsum / area,
             p_fric: pf,
@@ -138,32 +143,40 @@ impl Contact {
             frac_sliding: fr[2] / area,
             a,
             b,
-            p0: self.patch.p0,
+            p0: self.load.patch.p0,
         }
     }
 
     /// Fields along the strip nearest y = 0, from the leading to the trailing edge.
     pub fn field_y0(&self) -> Vec<FieldPoint> {
-        let j = (0..self.ny)
-            .min_by(|&p, &q| self.eta[p].abs().total_cmp(&self.eta[q].abs()))
+        let j = (0..self.lat.ny)
+            .min_by(|&p, &q| self.lat.eta[p].abs().total_cmp(&self.lat.eta[q].abs()))
             .unwrap_or(0);
-        let nx = self.nx;
-        let dxi = 2.0 * self.ell[j] / nx as f64;
-        let inside = if self.phase[j] > 0.0 { nx } else { nx + 1 };
+        let nx = self.lat.nx;
+        let dxi = 2.0 * self.lat.ell[j] / nx as f64;
+        let inside = if self.state.phase[j] > 0.0 {
+            nx
+        } else {
+            nx + 1
+        };
         (0..inside)
             .map(|slot| {
-                let xi = self.ell[j] - (slot as f64 + self.phase[j]) * dxi;
-                let s = &self.st[self.idx(j, slot)];
-                let np = self.r.node_p(&self.patch, xi, self.eta[j]);
-                let v = self.inputs.v;
+                let xi = self.lat.ell[j] - (slot as f64 + self.state.phase[j]) * dxi;
+                let s = &self.state.st[self.idx(j, slot)];
+                let np = self.law.r.node_p(&self.load.patch, xi, self.lat.eta[j]);
+                let v = self.state.run.inputs.v;
                 let slip = v
-                    * (self.inputs.cx - self.inputs.spin * self.eta[j] * self.patch.b)
-                        .hypot(self.inputs.cy + self.inputs.spin * xi * self.patch.a);
-                let m = self.material(&np, s.temp, s.u[0].hypot(s.u[1]), slip);
+                    * (self.state.run.inputs.cx
+                        - self.state.run.inputs.spin * self.lat.eta[j] * self.load.patch.b)
+                        .hypot(
+                            self.state.run.inputs.cy
+                                + self.state.run.inputs.spin * xi * self.load.patch.a,
+                        );
+                let m = self.law.material(&np, s.temp, s.u[0].hypot(s.u[1]), slip);
                 // rolling backwards: the grid is held mirrored (x -> -x, tau_x -> -tau_x)
-                let sgn = if self.reversed { -1.0 } else { 1.0 };
+                let sgn = if self.state.run.reversed { -1.0 } else { 1.0 };
                 FieldPoint {
-                    x: sgn * xi * self.patch.a,
+                    x: sgn * xi * self.load.patch.a,
                     tau: (s.tau[0] * s.tau[0] + s.tau[1] * s.tau[1]).sqrt(),
                     tau_x: sgn * s.tau[0],
                     tau_c1: m.tc1,
@@ -178,7 +191,7 @@ impl Contact {
 }
 
 /// The leading cell's term of the quadrature under the higher-order rules (docs/model.md
-/// section 9, step 8): where the layer yields at once the stress rises like c sqrt(s) from
+/// section 3.3): where the layer yields at once the stress rises like c sqrt(s) from
 /// the leading edge, and the trapezoid over the nodes at s_k = (k + ph) h (0 at the edge)
 /// misses -E(ph) c h^1.5, E(ph) = zeta(-1/2, ph) - (1 - ph) sqrt(ph) / 2 (the generalized
 /// Euler-Maclaurin formula; zeta the Hurwitz zeta function). c sqrt(h) is taken from the

@@ -1,6 +1,7 @@
 //! The kinematics of one sub-step of a strip (Eq. 4.16, 4.21): its length, creepages, flexibilities and heat-flow factors, shared by every kind of bristle move.
 
-use super::{Contact, V_STANDSTILL};
+use super::law::Mover;
+use super::V_STANDSTILL;
 use crate::thermal;
 
 /// Per-sub-step kinematic context of one strip.
@@ -49,7 +50,7 @@ impl Kin {
 
 /// The stress that multiplies a move's plastic slip in its dissipation (Eq. 4.29): the mean
 /// of its start and end stresses, the trapezoidal rule over the move (docs/model.md section
-/// 9, step 6). The end stress alone (the rule before step 6) is first order in the cell
+/// 3.4). The end stress alone is first order in the cell
 /// length: it overstates the heat where the stress falls along the move and understates it
 /// where the stress rises, and the flash temperature carries that error downstream.
 #[inline]
@@ -57,7 +58,7 @@ pub(super) fn trapezoid_stress(new: [f64; 2], old: [f64; 2]) -> [f64; 2] {
     [0.5 * (new[0] + old[0]), 0.5 * (new[1] + old[1])]
 }
 
-impl Contact {
+impl Mover<'_> {
     /// Kinematic/thermal context for a sub-step of duration `h` moving distance `dist`.
     pub(super) fn kin(&self, h: f64, dist: f64) -> Kin {
         let i = &self.inputs;
@@ -65,7 +66,7 @@ impl Contact {
         let vw = i.v * (1.0 + i.cx).abs();
         // with surface_time_flash alpha sqrt(v / v_w): Eq. 4.34 over the wheel surface's
         // time x / v_w, written in the layer's time x / v (finite for v_w -> 0)
-        let partition = if self.r.surface_time {
+        let partition = if self.law.r.on.surface_time {
             thermal::surface_time_partition
         } else {
             thermal::heat_partition
@@ -73,12 +74,13 @@ impl Contact {
         let alpha = partition(
             vw,
             i.v,
-            self.r.lambda_w,
-            self.r.kappa_w,
-            self.r.lambda_r,
-            self.r.kappa_r,
+            self.law.r.bodies.lambda_w,
+            self.law.r.bodies.kappa_w,
+            self.law.r.bodies.lambda_r,
+            self.law.r.bodies.kappa_r,
         );
-        let alpha_c = alpha * thermal::flash_factor(self.r.lambda_w, self.r.kappa_w);
+        let alpha_c =
+            alpha * thermal::flash_factor(self.law.r.bodies.lambda_w, self.law.r.bodies.kappa_w);
         Kin {
             h,
             dist,

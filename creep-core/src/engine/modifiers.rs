@@ -1,5 +1,6 @@
 //! The configuration's modifiers (formula and Rust effects, module [`crate::modifier`]) at the contact's operating point: their factors on the material, once per operating point and, where local, per bristle.
 
+use super::law::Law;
 use super::Contact;
 use crate::bristle::Material;
 use crate::config::AnyModifier;
@@ -150,27 +151,25 @@ impl Modifiers {
 }
 
 impl Contact {
-    /// True if formula or custom effects modify the material.
-    #[inline]
-    pub(super) fn has_modifiers(&self) -> bool {
-        !self.modifiers.is_empty()
-    }
-
     /// Sets the values of extra (data) columns that formula and Rust effects read.
     pub fn set_extra(&mut self, values: &[(String, f64)]) -> Result<()> {
-        self.modifiers.set_extra(values);
+        self.law.modifiers.set_extra(values);
         self.update_modifiers()
     }
 
     /// Moves the modifiers to the current inputs (the user's operating point).
     pub(super) fn update_modifiers(&mut self) -> Result<()> {
-        if self.modifiers.is_empty() {
+        if self.law.modifiers.is_empty() {
             return Ok(());
         }
-        let i = super::mirror_inputs(&self.inputs, self.reversed);
-        self.modifiers.at([i.v, i.fn_n / 1e3, i.cx, i.cy, i.spin])
+        let i = super::mirror_inputs(&self.state.run.inputs, self.state.run.reversed);
+        self.law
+            .modifiers
+            .at([i.v, i.fn_n / 1e3, i.cx, i.cy, i.spin])
     }
+}
 
+impl Law {
     /// Scales a material by the modifiers' factors (local ones evaluated at this bristle:
     /// pressure `p` Pa, temperature `t` degC, |u| = `u` m, rigid slip speed `slip` m/s).
     #[inline(always)]
@@ -206,7 +205,7 @@ impl Contact {
 
     /// The material at temperature `t` with the factors of the modifiers that depend on the
     /// operating point only (all of them unless some reads the local bristle state): the
-    /// same numbers as [`Self::material`] then (a factor of 1 changes nothing).
+    /// same numbers as [`Law::material`] then (a factor of 1 changes nothing).
     #[inline(always)]
     pub(super) fn material_static(&self, np: &NodeP, t: f64) -> Material {
         let mut m = self.r.material_base(np, t);
@@ -223,6 +222,6 @@ impl Contact {
     #[inline]
     pub(super) fn material(&self, np: &NodeP, t: f64, u: f64, slip: f64) -> Material {
         let m = self.r.material_base(np, t);
-        self.apply_modifiers(m, self.r.coulomb, np.p, t, u, slip)
+        self.apply_modifiers(m, self.r.on.coulomb, np.p, t, u, slip)
     }
 }

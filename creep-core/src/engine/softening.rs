@@ -1,6 +1,6 @@
 //! The move of a bristle in a layer that only softens as it heats: its local temperature solved on the law's branch as a scalar function of T (Eq. 4.3, 4.7, 4.29, 4.35).
 //!
-//! The general move ([`Contact::update_bristle`]) solves T = t_hist + self_c q(T) by
+//! The general move ([`Mover::update_bristle`]) solves T = t_hist + self_c q(T) by
 //! evaluating the whole bristle law at trial temperatures, 2.5-2.8 times per move. Where
 //! the layer only softens as it heats ([`crate::engine::FastPath::Softening`] with
 //! [`crate::material::Resolved::monotone_softening`]: every preset with temperature) and the move's branch of the law cannot change on the way
@@ -10,25 +10,26 @@
 //! Elsewhere (unloading from the plastic branch, a trial that crosses the yield surface,
 //! heat that rises with T faster than the solve can bound, a plastic bristle below tau_c1
 //! at t_hist that may ride on it, and, outside the higher-order rules, a damped release of a
-//! bristle that heated, whose reference is at its predictor: docs/model.md section 9, step
-//! 10) the general solve runs.
+//! bristle that heated, whose reference is at its predictor: docs/model.md section 6) the
+//! general solve runs.
 //! Formula and custom effects that depend on the operating point only scale the strengths
 //! by constants and keep the layer softening; effects on the local bristle state (p, T,
 //! |u|, slip) take the general solve. Results agree with the general solve within its
 //! tolerance (1e-4 relative change of the softening factors; tested in `tests/physics`).
 
 use super::kin::Kin;
-use super::Contact;
+use super::law::Mover;
 use crate::bristle::{BristleState, Material, Move, Regime, Rule, SofteningPath};
-use crate::material::{exp_fast, exp_pair, NodeP};
+use crate::fastexp::{exp_fast, exp_pair};
+use crate::material::NodeP;
 use crate::thermal::{self, StepFactors, TemperatureSolve, N_KERNEL};
 
-impl Contact {
-    /// [`Contact::update_bristle`] on the scalar path (see the module): advances one bristle
+impl Mover<'_> {
+    /// [`Mover::update_bristle`] on the scalar path (see the module): advances one bristle
     /// by one sub-step with heat flow and returns its heat density q (W/m^2), or None with
     /// the bristle untouched where the general solve must run. `du` is the move's rigid slip
     /// (m) and `t_hist` the temperature of its heat history (degC, Eq. 4.35), both from
-    /// [`Contact::update_bristle`].
+    /// [`Mover::update_bristle`].
     #[inline]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn update_softening(
@@ -54,11 +55,15 @@ impl Contact {
         let theta = self.release_weight(k, np, old.tau, false);
         // the damped release of a bristle that heated takes its reference at the predictor
         // in the general move (outside the higher-order rules); here it would be at t_hist
-        if theta < 1.0 && old.q > 0.0 && np0.is_none() && self.r.rule == Rule::SameCharacteristic {
+        if theta < 1.0
+            && old.q > 0.0
+            && np0.is_none()
+            && self.law.r.on.rule == Rule::SameCharacteristic
+        {
             return None;
         }
         // the material at t_hist (with the operating point's formula and custom factors)
-        let m_h = self.material_static(np, t_hist);
+        let m_h = self.law.material_static(np, t_hist);
         // flexibilities L + L_e and the elastic increment (Eq. 4.21); L_e does not depend on T
         let (lxe, lye, dtau) = k.flex(m_h.le, [x, y]);
         let path = mv.softening_path(&old, dtau, &m_h)?;
@@ -67,7 +72,7 @@ impl Contact {
         if old.regime == Regime::Plastic && path == SofteningPath::Elastic {
             return None;
         }
-        // The higher-order rules (docs/model.md section 9, step 8): the heat weighs the end
+        // The higher-order rules (docs/model.md section 3.3): the heat weighs the end
         // stress by 1/2 + QLIN; a hardening bristle's law takes tau_c2 linear along the move
         // from the start material's and the mean 1/L_p along the temperature profile
         // ([`crate::bristle::lp_mean`]), with the start material at the bristle's start
@@ -81,7 +86,7 @@ impl Contact {
                 if old.regime == Regime::Elastic {
                     return None;
                 }
-                let m0 = self.material_static(np0, old.temp);
+                let m0 = self.law.material_static(np0, old.temp);
                 Some(MoveStart {
                     tc2_0: m0.tc2,
                     lp0: m0.lp,
@@ -91,7 +96,7 @@ impl Contact {
             _ => None,
         };
         let pm = PathMove {
-            kq_h: self.r.kq / k.h,
+            kq_h: self.law.r.kq / k.h,
             np,
             m_h: &m_h,
             old: &old,
@@ -132,12 +137,12 @@ impl Contact {
     #[cold]
     #[inline(never)]
     fn span_closed(&self, np: &NodeP, t: f64) -> bool {
-        let m = self.material_static(np, t);
+        let m = self.law.material_static(np, t);
         m.tc2 - m.tc1 <= 1e-12 * m.tc2
     }
 
     /// The new state and heat density of a move on a [`SofteningPath`] (see
-    /// [`Contact::update_softening`]): the root of T = t_hist + self_c q(T) with q(T) the move's
+    /// [`Mover::update_softening`]): the root of T = t_hist + self_c q(T) with q(T) the move's
     /// heat density as a scalar function of T (L_e independent of T), from the material `m_h`
     /// at t_hist, and the law's branch evaluated there (see [`PathMove`]). None if q does not
     /// fall with T and the scalar search fails, if an elastic bristle would yield at the
@@ -151,9 +156,11 @@ impl Contact {
         // the predictor-corrector's root is within the square of the predictor's miss: its
         // residual is bounded relative to the move's flash rise instead (a failed search
         // stays far outside either)
-        let tol = match self.t_solve {
-            TemperatureSolve::Exact => self.t_tol,
-            TemperatureSolve::PredictorCorrector => self.t_tol.max(PC_RESIDUAL * (t - pm.t_hist)),
+        let tol = match self.law.t_solve {
+            TemperatureSolve::Exact => self.law.t_tol,
+            TemperatureSolve::PredictorCorrector => {
+                self.law.t_tol.max(PC_RESIDUAL * (t - pm.t_hist))
+            }
         };
         if (pm.t_hist + pm.self_c * q - t).abs() >= tol {
             return None;
@@ -175,7 +182,7 @@ impl Contact {
         let tr = [old.tau[0] + dtau[0], old.tau[1] + dtau[1]];
         let q = pm.heat(tr, tr);
         let t = pm.t_hist + pm.self_c * q;
-        let m = self.material_static(pm.np, t);
+        let m = self.law.material_static(pm.np, t);
         let ntr = (tr[0] * tr[0] + tr[1] * tr[1]).sqrt();
         if !(pm.mv.t0() < m.tc1 && ntr <= m.tc1) {
             return None;
@@ -191,10 +198,10 @@ impl Contact {
         let law = HardeningLaw::new(self, pm.m_h, t0, dn, pm.start);
         // the predictor-corrector where the release is not damped (theta = 1): neither the
         // release reference, the law's stress at t_hist, nor the exact search is needed
-        let pc = (self.t_solve == TemperatureSolve::PredictorCorrector
+        let pc = (self.law.t_solve == TemperatureSolve::PredictorCorrector
             && pm.theta == 1.0
             && pm.old.q > 0.0)
-            .then(|| predictor_corrector_root(pm, &law, pm.heat_along(dir, 0.0), self.pc_miss))
+            .then(|| predictor_corrector_root(pm, &law, pm.heat_along(dir, 0.0), self.law.pc_miss))
             .flatten();
         let (root, sliding, t, t_h) = match pc {
             Some((root, sliding, t)) => (root, sliding, t, None),
@@ -208,7 +215,7 @@ impl Contact {
         };
         // the span closes at one temperature and stays closed above it: open at the
         // root means open on the whole path from t_hist
-        if self.r.span_may_close() && self.span_closed(pm.np, root) {
+        if self.law.r.span_may_close() && self.span_closed(pm.np, root) {
             return None;
         }
         let theta = pm.theta;
@@ -279,7 +286,7 @@ impl Contact {
                 a * a / (4.0 * b) + c
             };
             let (root, _) =
-                thermal::solve_monotone(t_hist, self_c, (q_h, dq_h), q_max, self.t_tol, q_of)?;
+                thermal::solve_monotone(t_hist, self_c, (q_h, dq_h), q_max, self.law.t_tol, q_of)?;
             // the stress at the root: extrapolated over the last step (shorter than
             // the tolerance: tau_c2 changes by less than 1e-10 of itself over it)
             // unless the bristle may cross tau_c2 = t0 on it
@@ -300,7 +307,7 @@ impl Contact {
                 q_h,
                 (),
                 pm.old.q,
-                self.t_tol,
+                self.law.t_tol,
                 |t| ((), q_of(t).0),
                 |_, _, _| Some(()),
             );
@@ -536,8 +543,8 @@ struct HardeningLaw<'a> {
 
 impl<'a> HardeningLaw<'a> {
     /// The law of the contact's layer from the material at t_hist.
-    fn new(c: &Contact, m_h: &'a Material, t0: f64, dn: f64, start: Option<MoveStart>) -> Self {
-        let (c2, cp) = (c.r.tc2_t, c.r.lp_t);
+    fn new(c: &Mover, m_h: &'a Material, t0: f64, dn: f64, start: Option<MoveStart>) -> Self {
+        let (c2, cp) = (c.law.r.tc2_t, c.law.r.lp_t);
         let e_h = (-dn / m_h.lp).exp();
         let (i0, k_h) = match &start {
             Some(r) if r.lp0.is_finite() && r.lp0 > 0.0 => {

@@ -7,6 +7,30 @@ use crate::bristle::{self, BristleState};
 /// chains the processor overlaps).
 pub(super) const LANES: usize = 4;
 
+/// The caches of FASTSIM's steady march, kept from call to call.
+#[derive(Clone, Debug)]
+pub(super) struct CoulombScratch {
+    /// Coulomb bounds of the lattice nodes, strips side by side, for the peak pressure `p0`.
+    pub bounds: Vec<[f64; LANES]>,
+    /// Peak pressure `bounds` belong to, Pa (NaN: none yet).
+    pub p0: f64,
+    /// Every node accumulator of the grid state is 0 (bit for bit): the march then need not
+    /// clear them again. Whatever may write them (a step, a restored state, a reset of the
+    /// nodes) sets this false.
+    pub node_acc_zero: bool,
+}
+
+impl CoulombScratch {
+    /// Empty caches, node accumulators zero.
+    pub fn new() -> Self {
+        CoulombScratch {
+            bounds: Vec::new(),
+            p0: f64::NAN,
+            node_acc_zero: true,
+        }
+    }
+}
+
 /// What every strip's march shares: the grid, the creepages and the flexibilities of the
 /// step's inputs.
 #[derive(Clone, Copy)]
@@ -84,36 +108,36 @@ impl Contact {
     /// The Coulomb bounds mu p of the lattice nodes k = 0..=nx, [`LANES`] strips side by side
     /// (group g, node k at `g * (nx + 1) + k`), cached per peak pressure.
     fn bound_lanes(&mut self) -> Vec<[f64; LANES]> {
-        let nx = self.nx;
-        let groups = self.ny.div_ceil(LANES);
-        let mut b = std::mem::take(&mut self.bound_cache);
-        if self.bound_cache_p0 != self.patch.p0 || b.len() != groups * (nx + 1) {
+        let nx = self.lat.nx;
+        let groups = self.lat.ny.div_ceil(LANES);
+        let mut b = std::mem::take(&mut self.coulomb.bounds);
+        if self.coulomb.p0 != self.load.patch.p0 || b.len() != groups * (nx + 1) {
             b.clear();
             b.resize(groups * (nx + 1), [0.0; LANES]);
-            for j in 0..self.ny {
-                let mut nodes = std::mem::take(&mut self.np_cache[j]);
-                let mut p0 = self.np_cache_p0[j];
-                self.lattice_nodes(j, &mut nodes, &mut p0);
-                self.np_cache_p0[j] = p0;
+            for j in 0..self.lat.ny {
+                let mut nodes = std::mem::take(&mut self.scratch[j].nodes);
+                let mut p0 = self.scratch[j].nodes_p0;
+                self.mover().lattice_nodes(j, &mut nodes, &mut p0);
+                self.scratch[j].nodes_p0 = p0;
                 let (g, l) = (j / LANES, j % LANES);
                 for (k, n) in nodes.iter().enumerate().skip(1) {
                     b[g * (nx + 1) + k][l] = n.bound;
                 }
-                self.np_cache[j] = nodes;
+                self.scratch[j].nodes = nodes;
             }
-            self.bound_cache_p0 = self.patch.p0;
+            self.coulomb.p0 = self.load.patch.p0;
         }
         b
     }
 
-    /// The steady state of FASTSIM (see [`Self::coulomb_path`]): the march of
-    /// [`Self::march_coulomb`] for every strip at phase 0, [`LANES`] strips side by side, with
+    /// The steady state of FASTSIM (see [`Law::coulomb_path`](super::law::Law::coulomb_path)): the march of
+    /// [`Mover::march_coulomb`](super::law::Mover::march_coulomb) for every strip at phase 0, [`LANES`] strips side by side, with
     /// the integrals of [`Self::integrate`] (trapezoid over the nodes) summed in the same
     /// pass. Every strip has nx cells, so the strips of a group advance in lockstep and
     /// the latency of each strip's sqrt/division chain is hidden behind the others'.
     /// The states stored are those of the general march (to rounding).
     pub(super) fn steady_coulomb(&mut self) -> super::Outputs {
-        if self.inputs.cy == 0.0 && self.inputs.spin == 0.0 {
+        if self.state.run.inputs.cy == 0.0 && self.state.run.inputs.spin == 0.0 {
             self.steady_coulomb_lanes::<false>()
         } else {
             self.steady_coulomb_lanes::<true>()
@@ -125,10 +149,10 @@ impl Contact {
     /// same numbers, since sqrt(x^2) = |x| exactly).
     #[inline(never)]
     fn steady_coulomb_lanes<const LAT: bool>(&mut self) -> super::Outputs {
-        let nx = self.nx;
-        for j in 0..self.ny {
-            self.head[j] = 0;
-            self.phase[j] = 0.0;
+        let nx = self.lat.nx;
+        for j in 0..self.lat.ny {
+            self.state.head[j] = 0;
+            self.state.phase[j] = 0.0;
         }
         let bounds = self.bound_lanes();
         let mut tot = Totals::default();
@@ -138,8 +162,8 @@ impl Contact {
             ..BristleState::default()
         };
         let mut scratch = vec![init; (LANES - 1) * (nx + 1)];
-        let mut st = std::mem::take(&mut self.st);
-        let mut node_st = std::mem::take(&mut self.node_st);
+        let mut st = std::mem::take(&mut self.state.st);
+        let mut node_st = std::mem::take(&mut self.state.node_st);
         for (g, ((strips, nodes), bnd)) in st
             .chunks_mut(LANES * (nx + 1))
             .zip(node_st.chunks_mut(LANES * (nx + 1)))
@@ -154,7 +178,7 @@ impl Contact {
                 .chain(scratch.chunks_exact_mut(nx + 1))
                 .take(LANES)
                 .collect();
-            debug_assert!(pad.is_empty() || g * LANES + lanes == self.ny);
+            debug_assert!(pad.is_empty() || g * LANES + lanes == self.lat.ny);
             for o in out.iter_mut() {
                 o[0] = init;
             }
@@ -169,33 +193,33 @@ impl Contact {
                 n.copy_from_slice(o);
             }
         }
-        self.st = st;
-        self.node_st = node_st;
+        self.state.st = st;
+        self.state.node_st = node_st;
         // ... with no heat history and no part of a cell travelled: a step after a steady
         // state in mid-run must not start from the parts and node states of the run before
         // it (the node accumulators are cleared only where a step, a reset of the nodes or a
         // restored state may have written them since they were last cleared)
-        if !self.node_acc_zero {
-            self.node_acc.fill([0.0; crate::thermal::N_KERNEL]);
-            self.node_acc_zero = true;
+        if !self.coulomb.node_acc_zero {
+            self.state.node_acc.fill([0.0; crate::thermal::N_KERNEL]);
+            self.coulomb.node_acc_zero = true;
         }
-        self.part.fill(super::Partial::default());
-        self.bound_cache = bounds;
+        self.state.part.fill(super::Partial::default());
+        self.coulomb.bounds = bounds;
         self.coulomb_outputs(&tot)
     }
 
     /// The march's shared constants from the step's inputs and the flexibilities.
     fn coulomb_march(&self) -> CoulombMarch {
-        let kin0 = self.kin(0.0, 0.0);
-        let v = self.inputs.v;
+        let kin0 = self.mover().kin(0.0, 0.0);
+        let v = self.state.run.inputs.v;
         CoulombMarch {
-            nx: self.nx,
-            a: self.patch.a,
-            b: self.patch.b,
-            line: self.patch.line,
+            nx: self.lat.nx,
+            a: self.load.patch.a,
+            b: self.load.patch.b,
+            line: self.load.patch.line,
             v,
             heat: v > V_STANDSTILL,
-            t_bulk: self.inputs.t_bulk,
+            t_bulk: self.state.run.inputs.t_bulk,
             lx: kin0.lx,
             ly: kin0.ly,
             ilx: 1.0 / kin0.lx,
@@ -211,21 +235,28 @@ impl Contact {
     fn lane_group(&self, m: &CoulombMarch, g: usize) -> LaneGroup {
         let (nx, a, b, line) = (m.nx, m.a, m.b, m.line);
         let g0 = g * LANES;
-        let lanes = (self.ny - g0).min(LANES);
+        let lanes = (self.lat.ny - g0).min(LANES);
         // per-lane constants (padding lanes repeat the last strip into scratch)
         let jl = |l: usize| g0 + l.min(lanes - 1);
-        let d: [f64; LANES] = std::array::from_fn(|l| 2.0 * self.ell[jl(l)] * a / nx as f64);
-        let y: [f64; LANES] = std::array::from_fn(|l| if line { 0.0 } else { self.eta[jl(l)] * b });
+        let d: [f64; LANES] = std::array::from_fn(|l| 2.0 * self.lat.ell[jl(l)] * a / nx as f64);
+        let y: [f64; LANES] =
+            std::array::from_fn(|l| if line { 0.0 } else { self.lat.eta[jl(l)] * b });
         LaneGroup {
             lanes,
             d,
-            dxi: std::array::from_fn(|l| 2.0 * self.ell[jl(l)] / nx as f64),
-            ell: std::array::from_fn(|l| self.ell[jl(l)]),
+            dxi: std::array::from_fn(|l| 2.0 * self.lat.ell[jl(l)] / nx as f64),
+            ell: std::array::from_fn(|l| self.lat.ell[jl(l)]),
             y,
-            dy: std::array::from_fn(|l| if line { 2.0 * b } else { self.deta[jl(l)] * b }),
+            dy: std::array::from_fn(|l| {
+                if line {
+                    2.0 * b
+                } else {
+                    self.lat.deta[jl(l)] * b
+                }
+            }),
             inv_h: std::array::from_fn(|l| {
                 if m.heat {
-                    self.r.kq / (d[l] / m.v)
+                    self.law.r.kq / (d[l] / m.v)
                 } else {
                     0.0
                 }
@@ -239,9 +270,9 @@ impl Contact {
     /// The outputs of FASTSIM's steady state from the contact's integrals (no temperature
     /// rise, no plastic regime).
     fn coulomb_outputs(&self, t: &Totals) -> super::Outputs {
-        let (a, b) = (self.patch.a, self.patch.b);
-        let t_bulk = self.inputs.t_bulk;
-        let fn_n = self.inputs.fn_n;
+        let (a, b) = (self.load.patch.a, self.load.patch.b);
+        let t_bulk = self.state.run.inputs.t_bulk;
+        let fn_n = self.state.run.inputs.fn_n;
         let area = t.area.max(f64::MIN_POSITIVE);
         super::Outputs {
             fx: t.fx,
@@ -256,7 +287,7 @@ impl Contact {
             frac_sliding: (area - t.el).max(0.0) / area,
             a,
             b,
-            p0: self.patch.p0,
+            p0: self.load.patch.p0,
         }
     }
 }

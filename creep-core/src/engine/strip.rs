@@ -1,12 +1,64 @@
 //! One strip of the bristle grid as a unit of work: its bristles, ring buffer and caches borrowed out of the contact, so that strips advance independently (on several threads with `threads`).
 
-use super::{Contact, Scheme};
+use super::law::Mover;
+use super::Contact;
 use crate::bristle::BristleState;
 use crate::material::NodeP;
 use crate::thermal::{StepFactors, N_KERNEL};
 use rayon::prelude::*;
 
-/// The mutable state of strip `j` during a step (the rest of the contact is read only).
+/// The caches of one strip's moves, kept from step to step (each strip owns its own, so
+/// strips share no mutable state).
+#[derive(Clone, Debug, Default)]
+pub(super) struct StripScratch {
+    /// Pressure parts of the lattice nodes, for the peak pressure `nodes_p0`.
+    pub nodes: Vec<NodeP>,
+    /// Peak pressure the cached `nodes` belong to, Pa (NaN: none yet).
+    pub nodes_p0: f64,
+    /// Kernel factors of recent sub-step lengths (h, factors).
+    pub fac: Vec<(f64, StepFactors)>,
+}
+
+impl StripScratch {
+    /// Empty caches.
+    pub fn new() -> Self {
+        StripScratch {
+            nodes: Vec::new(),
+            nodes_p0: f64::NAN,
+            fac: Vec::new(),
+        }
+    }
+}
+
+/// Which strips a step computes: strips that are mirror images of each other about y = 0
+/// once, while that holds ([`Contact::each_strip`]).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Symmetry {
+    /// Every strip's state equals its mirror image's about y = 0 (strip ny - 1 - j), bit for
+    /// bit: then, while the inputs are symmetric too, one of each pair is computed and copied.
+    pub mirrored: bool,
+    /// `mirrored` is still to be found from the state FASTSIM's steady march left
+    /// ([`Contact::settle_mirrored`]): a run of steady states alone never needs it, so the
+    /// comparison of every strip with its mirror image waits for the next step.
+    pub unknown: bool,
+    /// Symmetric strips are computed once ([`Contact::set_mirror_strips`]; off for tests and
+    /// benchmarks that compare both).
+    pub on: bool,
+}
+
+impl Symmetry {
+    /// A new contact's: mirror images, computed once.
+    pub fn new() -> Self {
+        Symmetry {
+            mirrored: true,
+            unknown: false,
+            on: true,
+        }
+    }
+}
+
+/// The mutable state of strip `j` during a step: its part of the grid state and its scratch
+/// (the law, lattice and kinematics reach its moves through a [`Mover`], read only).
 pub(super) struct Strip<'a> {
     /// Strip index.
     pub j: usize,
@@ -43,8 +95,9 @@ impl Strip<'_> {
 impl Contact {
     /// Runs `f` on every strip, on the contact's threads when it has them (results do not
     /// depend on the number of threads: strips share no mutable state). While `f` runs, the
-    /// contact's per-strip vectors (`st`, `acc`, `head`, `phase`, caches) are moved into the
-    /// strips: `f` reaches them through its [`Strip`] only, never through the contact.
+    /// grid state's per-strip vectors (`st`, `acc`, `head`, `phase`, ...) and the strips'
+    /// scratch are moved into the strips: `f` reaches them through its [`Strip`] only, and
+    /// the rest through the [`Mover`] (law, lattice, kinematics), read only.
     ///
     /// Symmetric strips are computed once: the strips lie symmetric about y = 0 (bit for bit,
     /// [`super::grid::strip_rule`]) and, without spin, nothing a move computes depends on the
@@ -52,51 +105,45 @@ impl Contact {
     /// enters only through c_s y and c_s x; the pressure through eta^2; IEEE rounding is
     /// symmetric in sign), with or without lateral creepage. So a strip whose state equals
     /// that of the strip at -eta stays equal to it: while that holds for every strip
-    /// (`strips_mirrored`) and the spin is 0, `f` runs on the strips j <= ny - 1 - j only
+    /// (`Symmetry::mirrored`) and the spin is 0, `f` runs on the strips j <= ny - 1 - j only
     /// and each is copied onto strip ny - 1 - j, with bit-identical results (test
     /// `mirrored_strips_are_bit_identical`).
-    pub(super) fn each_strip(&mut self, f: impl Fn(&Contact, &mut Strip) + Sync) {
+    pub(super) fn each_strip(&mut self, f: impl Fn(&Mover, &mut Strip) + Sync) {
         self.settle_mirrored();
         // `f` may write the node accumulators
-        self.node_acc_zero = false;
-        let sym =
-            self.strips_mirrored && self.ny > 1 && !self.patch.line && self.inputs.spin == 0.0;
-        self.strips_mirrored = sym;
-        let mirror = sym && self.mirror_strips;
-        let computed = if mirror { self.ny.div_ceil(2) } else { self.ny };
-        let nx1 = self.nx + 1;
-        let mut st = std::mem::take(&mut self.st);
-        let mut acc = std::mem::take(&mut self.acc);
-        let mut node_st = std::mem::take(&mut self.node_st);
-        let mut node_acc = std::mem::take(&mut self.node_acc);
-        let mut part = std::mem::take(&mut self.part);
-        let mut head = std::mem::take(&mut self.head);
-        let mut phase = std::mem::take(&mut self.phase);
-        let mut nodes = std::mem::take(&mut self.np_cache);
-        let mut nodes_p0 = std::mem::take(&mut self.np_cache_p0);
-        let mut fac = std::mem::take(&mut self.fac_cache);
+        self.coulomb.node_acc_zero = false;
+        let sym = self.sym.mirrored
+            && self.lat.ny > 1
+            && !self.load.patch.line
+            && self.state.run.inputs.spin == 0.0;
+        self.sym.mirrored = sym;
+        let mirror = sym && self.sym.on;
+        let computed = if mirror {
+            self.lat.ny.div_ceil(2)
+        } else {
+            self.lat.ny
+        };
+        let nx1 = self.lat.nx + 1;
+        let mut st = std::mem::take(&mut self.state.st);
+        let mut acc = std::mem::take(&mut self.state.acc);
+        let mut node_st = std::mem::take(&mut self.state.node_st);
+        let mut node_acc = std::mem::take(&mut self.state.node_acc);
+        let mut part = std::mem::take(&mut self.state.part);
+        let mut head = std::mem::take(&mut self.state.head);
+        let mut phase = std::mem::take(&mut self.state.phase);
+        let mut scratch = std::mem::take(&mut self.scratch);
         {
-            let this = &*self;
+            let this = self.mover();
             let mut strips: Vec<Strip> = st
                 .chunks_mut(nx1)
                 .zip(acc.chunks_mut(nx1))
                 .zip(head.iter_mut().zip(phase.iter_mut()))
-                .zip(nodes.iter_mut().zip(nodes_p0.iter_mut()))
-                .zip(fac.iter_mut())
+                .zip(scratch.iter_mut())
                 .zip(node_st.chunks_mut(nx1).zip(node_acc.chunks_mut(nx1)))
                 .zip(part.iter_mut())
                 .enumerate()
                 .map(
-                    |(
-                        j,
-                        (
-                            (
-                                ((((st, acc), (head, phase)), (nodes, nodes_p0)), fac),
-                                (node_st, node_acc),
-                            ),
-                            part,
-                        ),
-                    )| Strip {
+                    |(j, (((((st, acc), (head, phase)), sc), (node_st, node_acc)), part))| Strip {
                         j,
                         st,
                         acc,
@@ -105,9 +152,9 @@ impl Contact {
                         part,
                         head,
                         phase,
-                        nodes,
-                        nodes_p0,
-                        fac,
+                        nodes: &mut sc.nodes,
+                        nodes_p0: &mut sc.nodes_p0,
+                        fac: &mut sc.fac,
                     },
                 )
                 .take(computed)
@@ -117,21 +164,19 @@ impl Contact {
                     strips
                         .par_iter_mut()
                         .with_max_len(1)
-                        .for_each(|sp| f(this, sp))
+                        .for_each(|sp| f(&this, sp))
                 }),
-                _ => strips.iter_mut().for_each(|sp| f(this, sp)),
+                _ => strips.iter_mut().for_each(|sp| f(&this, sp)),
             }
         }
-        self.st = st;
-        self.acc = acc;
-        self.node_st = node_st;
-        self.node_acc = node_acc;
-        self.part = part;
-        self.head = head;
-        self.phase = phase;
-        self.np_cache = nodes;
-        self.np_cache_p0 = nodes_p0;
-        self.fac_cache = fac;
+        self.state.st = st;
+        self.state.acc = acc;
+        self.state.node_st = node_st;
+        self.state.node_acc = node_acc;
+        self.state.part = part;
+        self.state.head = head;
+        self.state.phase = phase;
+        self.scratch = scratch;
         if mirror {
             self.copy_to_mirror_strips();
         }
@@ -141,30 +186,30 @@ impl Contact {
     /// accumulators, node states, part of the cell, ring-buffer head and phase; the caches
     /// refill themselves).
     fn copy_to_mirror_strips(&mut self) {
-        let (ny, nx1) = (self.ny, self.nx + 1);
+        let (ny, nx1) = (self.lat.ny, self.lat.nx + 1);
         for j in 0..ny / 2 {
             let m = ny - 1 - j;
             let (src, dst) = (j * nx1, m * nx1);
-            self.st.copy_within(src..src + nx1, dst);
-            self.acc.copy_within(src..src + nx1, dst);
-            self.node_st.copy_within(src..src + nx1, dst);
-            self.node_acc.copy_within(src..src + nx1, dst);
-            self.part[m] = self.part[j];
-            self.head[m] = self.head[j];
-            self.phase[m] = self.phase[j];
+            self.state.st.copy_within(src..src + nx1, dst);
+            self.state.acc.copy_within(src..src + nx1, dst);
+            self.state.node_st.copy_within(src..src + nx1, dst);
+            self.state.node_acc.copy_within(src..src + nx1, dst);
+            self.state.part[m] = self.state.part[j];
+            self.state.head[m] = self.state.head[j];
+            self.state.phase[m] = self.state.phase[j];
         }
     }
 
     /// Sets whether the strips are mirror images of each other (known now).
     pub(super) fn set_mirrored(&mut self, mirrored: bool) {
-        self.strips_mirrored = mirrored;
-        self.mirrored_unknown = false;
+        self.sym.mirrored = mirrored;
+        self.sym.unknown = false;
     }
 
     /// Finds whether the strips are mirror images where FASTSIM's steady march left that
     /// open ([`Self::strips_equal`] on its state, unchanged since).
     pub(super) fn settle_mirrored(&mut self) {
-        if self.mirrored_unknown {
+        if self.sym.unknown {
             self.set_mirrored(self.strips_equal());
         }
     }
@@ -173,7 +218,7 @@ impl Contact {
     /// [`Self::each_strip`]; 0 and -0 differ, so a state that holds both is computed strip by
     /// strip).
     pub(super) fn strips_equal(&self) -> bool {
-        let (ny, nx1) = (self.ny, self.nx + 1);
+        let (ny, nx1) = (self.lat.ny, self.lat.nx + 1);
         let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
         let bristle = |s: &BristleState| [s.u[0], s.u[1], s.tau[0], s.tau[1], s.sh, s.temp, s.q];
         let bristles = |a: &[BristleState], b: &[BristleState]| {
@@ -187,13 +232,16 @@ impl Contact {
         (0..ny / 2).all(|j| {
             let m = ny - 1 - j;
             let (a, b) = (j * nx1..(j + 1) * nx1, m * nx1..(m + 1) * nx1);
-            self.head[j] == self.head[m]
-                && same(&[self.phase[j]], &[self.phase[m]])
-                && same(&part(&self.part[j]), &part(&self.part[m]))
-                && bristles(&self.st[a.clone()], &self.st[b.clone()])
-                && bristles(&self.node_st[a.clone()], &self.node_st[b.clone()])
-                && accs(&self.acc[a.clone()], &self.acc[b.clone()])
-                && accs(&self.node_acc[a], &self.node_acc[b])
+            self.state.head[j] == self.state.head[m]
+                && same(&[self.state.phase[j]], &[self.state.phase[m]])
+                && same(&part(&self.state.part[j]), &part(&self.state.part[m]))
+                && bristles(&self.state.st[a.clone()], &self.state.st[b.clone()])
+                && bristles(
+                    &self.state.node_st[a.clone()],
+                    &self.state.node_st[b.clone()],
+                )
+                && accs(&self.state.acc[a.clone()], &self.state.acc[b.clone()])
+                && accs(&self.state.node_acc[a], &self.state.node_acc[b])
         })
     }
 
@@ -201,17 +249,17 @@ impl Contact {
     /// of them (off: for tests and benchmarks that compare both; results are bit-identical).
     #[doc(hidden)]
     pub fn set_mirror_strips(&mut self, on: bool) {
-        self.mirror_strips = on;
+        self.sym.on = on;
     }
 
     /// True while the strips at eta and -eta hold equal states, so that the next step without
     /// spin computes one of each pair (for tests).
     #[doc(hidden)]
     pub fn strips_mirrored(&self) -> bool {
-        if self.mirrored_unknown {
+        if self.sym.unknown {
             self.strips_equal()
         } else {
-            self.strips_mirrored
+            self.sym.mirrored
         }
     }
 
@@ -237,90 +285,6 @@ impl Contact {
     pub fn threads(&self) -> usize {
         self.pool.as_ref().map_or(1, |p| p.current_num_threads())
     }
-
-    /// The reference scheme for strip `sp`: every bristle gets one sub-step per cell crossing,
-    /// cut at the instants a new bristle enters (the steady march's sub-steps exactly). Costs
-    /// about (cells travelled) x (bristles) moves per step.
-    pub(super) fn advance_cells(&self, sp: &mut Strip, dt: f64) {
-        let j = sp.j;
-        let v = self.inputs.v;
-        let a = self.patch.a;
-        let march = matches!(self.scheme, Scheme::CellsMarch | Scheme::CellsHigher);
-        let dx = 2.0 * self.ell[j] * a / self.nx as f64;
-        let mut remaining = v * dt;
-        let tol = 1e-9 * dx;
-        // Bristles that enter during this step see only this step's (constant) inputs:
-        // full cells, then the final partial move. They are computed afterwards by a march
-        // (`march_new`), which performs exactly the updates the sub-step loop would, so the
-        // loop only advances the bristles that were in the contact before the step
-        // (slots >= n_new). With v dt >= 2a the whole step costs one steady march.
-        let mut n_new = 0usize;
-        let mut d_end = 0.0;
-        // Bristles that will leave before the end of the step need no update at all: count
-        // this step's entries first (same arithmetic as the loop below).
-        let wraps = {
-            let (mut rem, mut ph, mut w) = (remaining, *sp.phase, 0usize);
-            while rem > tol {
-                let to_next = (1.0 - ph) * dx;
-                if rem >= to_next - tol {
-                    w += 1;
-                    rem -= to_next;
-                    ph = 0.0;
-                } else {
-                    rem = 0.0;
-                }
-            }
-            w
-        };
-        while remaining > tol {
-            let to_next = (1.0 - *sp.phase) * dx;
-            if remaining >= to_next - tol {
-                // end positions are one node further (phase 1), then the slots shift. A cell
-                // begun in an earlier step is moved whole from the bristles' node states with
-                // the distance-weighted inputs of its parts (whole-cell commit: no cell is cut)
-                if !march || n_new + (wraps - n_new) <= self.nx {
-                    // (within this guard: with more entries than cells, end would underflow)
-                    let (skip, end) = if !march {
-                        (0, self.nx + 1)
-                    } else {
-                        (n_new, self.nx + 1 - (wraps - n_new))
-                    };
-                    let kin = if *sp.phase > 0.0 {
-                        sp.back_to_nodes(skip..self.nx.min(end));
-                        self.part_kin(sp.part, to_next)
-                    } else {
-                        self.kin(to_next / v, to_next)
-                    };
-                    self.substep_strip_kin(sp, &kin, 1.0, skip, end);
-                }
-                // all bristles moved one node: the slot numbering shifts by recycling the oldest
-                self.enter_bristle(sp);
-                n_new += 1;
-                remaining -= to_next;
-            } else {
-                let ph = *sp.phase + remaining / dx;
-                let skip = if !march { 0 } else { n_new };
-                if !march || n_new <= self.nx {
-                    // the bristles at the step's phase, from their node states over the whole
-                    // part of the cell travelled since (for the outputs; not committed)
-                    if *sp.phase == 0.0 {
-                        sp.keep_at_nodes(skip..self.nx);
-                    } else {
-                        sp.back_to_nodes(skip..self.nx);
-                    }
-                    let kin = self.part_kin(sp.part, remaining);
-                    self.substep_strip_kin(sp, &kin, ph, skip, self.nx + 1);
-                }
-                self.add_part(sp.part, remaining);
-                *sp.phase = ph;
-                d_end = remaining;
-                remaining = 0.0;
-            }
-        }
-        if n_new > 0 && march {
-            self.march_new(sp, n_new.min(self.nx + 1), d_end);
-        }
-    }
 }
 
 impl Strip<'_> {
@@ -344,7 +308,7 @@ impl Strip<'_> {
     }
 }
 
-impl Contact {
+impl Mover<'_> {
     /// Time to roll `d` (m) at the current speed, s (0 at standstill, the v -> 0 limit).
     pub(super) fn time_of(&self, d: f64) -> f64 {
         let v = self.inputs.v;
@@ -382,5 +346,89 @@ impl Contact {
             k.cs = q.dcs / q.d;
         }
         k
+    }
+
+    /// The reference scheme for strip `sp`: every bristle gets one sub-step per cell crossing,
+    /// cut at the instants a new bristle enters (the steady march's sub-steps exactly). Costs
+    /// about (cells travelled) x (bristles) moves per step.
+    pub(super) fn advance_cells(&self, sp: &mut Strip, dt: f64) {
+        let j = sp.j;
+        let v = self.inputs.v;
+        let a = self.patch.a;
+        let march = self.law.march_new;
+        let dx = 2.0 * self.lat.ell[j] * a / self.lat.nx as f64;
+        let mut remaining = v * dt;
+        let tol = 1e-9 * dx;
+        // Bristles that enter during this step see only this step's (constant) inputs:
+        // full cells, then the final partial move. They are computed afterwards by a march
+        // (`march_new`), which performs exactly the updates the sub-step loop would, so the
+        // loop only advances the bristles that were in the contact before the step
+        // (slots >= n_new). With v dt >= 2a the whole step costs one steady march.
+        let mut n_new = 0usize;
+        let mut d_end = 0.0;
+        // Bristles that will leave before the end of the step need no update at all: count
+        // this step's entries first (same arithmetic as the loop below).
+        let wraps = {
+            let (mut rem, mut ph, mut w) = (remaining, *sp.phase, 0usize);
+            while rem > tol {
+                let to_next = (1.0 - ph) * dx;
+                if rem >= to_next - tol {
+                    w += 1;
+                    rem -= to_next;
+                    ph = 0.0;
+                } else {
+                    rem = 0.0;
+                }
+            }
+            w
+        };
+        while remaining > tol {
+            let to_next = (1.0 - *sp.phase) * dx;
+            if remaining >= to_next - tol {
+                // end positions are one node further (phase 1), then the slots shift. A cell
+                // begun in an earlier step is moved whole from the bristles' node states with
+                // the distance-weighted inputs of its parts (whole-cell commit: no cell is cut)
+                if !march || n_new + (wraps - n_new) <= self.lat.nx {
+                    // (within this guard: with more entries than cells, end would underflow)
+                    let (skip, end) = if !march {
+                        (0, self.lat.nx + 1)
+                    } else {
+                        (n_new, self.lat.nx + 1 - (wraps - n_new))
+                    };
+                    let kin = if *sp.phase > 0.0 {
+                        sp.back_to_nodes(skip..self.lat.nx.min(end));
+                        self.part_kin(sp.part, to_next)
+                    } else {
+                        self.kin(to_next / v, to_next)
+                    };
+                    self.substep_strip_kin(sp, &kin, 1.0, skip, end);
+                }
+                // all bristles moved one node: the slot numbering shifts by recycling the oldest
+                self.enter_bristle(sp);
+                n_new += 1;
+                remaining -= to_next;
+            } else {
+                let ph = *sp.phase + remaining / dx;
+                let skip = if !march { 0 } else { n_new };
+                if !march || n_new <= self.lat.nx {
+                    // the bristles at the step's phase, from their node states over the whole
+                    // part of the cell travelled since (for the outputs; not committed)
+                    if *sp.phase == 0.0 {
+                        sp.keep_at_nodes(skip..self.lat.nx);
+                    } else {
+                        sp.back_to_nodes(skip..self.lat.nx);
+                    }
+                    let kin = self.part_kin(sp.part, remaining);
+                    self.substep_strip_kin(sp, &kin, ph, skip, self.lat.nx + 1);
+                }
+                self.add_part(sp.part, remaining);
+                *sp.phase = ph;
+                d_end = remaining;
+                remaining = 0.0;
+            }
+        }
+        if n_new > 0 && march {
+            self.march_new(sp, n_new.min(self.lat.nx + 1), d_end);
+        }
     }
 }

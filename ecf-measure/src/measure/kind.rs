@@ -49,10 +49,14 @@ pub fn read_data(path: &Path, defaults: &Defaults) -> Result<Data> {
         source_name: src.clone(),
         message: format!("cannot read: {e}"),
     })?;
-    let text = utf8_text(&bytes, &src)?;
-    Ok(match file_kind(&text) {
-        FileKind::Hpt => Data::Hpt(read_hpt(&text, &src)?),
-        FileKind::Rows => Data::Rows(Dataset::from_csv_str(&text, &src, defaults)?),
+    read_data_text(&utf8_text(&bytes, &src)?, &src, defaults)
+}
+
+/// Reads measurement CSV text of either kind ([`file_kind`]); `src` names it in messages.
+pub fn read_data_text(text: &str, src: &str, defaults: &Defaults) -> Result<Data> {
+    Ok(match file_kind(text) {
+        FileKind::Hpt => Data::Hpt(read_hpt(text, src)?),
+        FileKind::Rows => Data::Rows(Dataset::from_csv_str(text, src, defaults)?),
     })
 }
 

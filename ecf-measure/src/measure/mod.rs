@@ -19,7 +19,7 @@ mod rows;
 mod text;
 
 pub use hpt_file::{read_hpt, HptRow, HPT_COLUMNS};
-pub use kind::{file_kind, read_data, Data, FileKind};
+pub use kind::{file_kind, read_data, read_data_text, Data, FileKind};
 pub use quantity::{canonical_unit, recognise, Quantity, QuantitySpec, QUANTITIES};
 pub use text::{cut, detect_delimiter, utf8_text};
 

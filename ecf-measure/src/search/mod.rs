@@ -71,7 +71,7 @@ pub const EVIDENCE: f64 = 2.0;
 /// configuration's own held-out CV(RMSE): a gain that matters against the scatter of the
 /// data, whatever the starting error. On files with nothing missing the configuration is
 /// already near the noise, where no form can gain this much without luck.
-pub const GAIN_OF_NOISE: f64 = 0.15;
+pub const GAIN_OF_NOISE: f64 = 0.12;
 
 /// The held-out CV(RMSE) (%) a proposed form must reach at most: [`GAIN_OF_NOISE`] of the
 /// noise level `noise_cv` (%) below `base_heldout`, or [`CLAIM_FRACTION`] below it when the

@@ -2,7 +2,7 @@
 
 use super::*;
 
-fn state_handle(p: f::fmi2FMUstate) -> usize {
+fn state_handle(p: *mut std::ffi::c_void) -> usize {
     p as usize
 }
 
@@ -25,7 +25,16 @@ fn store_state(
     let mut r = registry();
     if h == 0 {
         let k = r.handle();
-        r.states.insert(k, StateBox { owner, snap, bytes });
+        let fmi3 = comp.v3.is_some();
+        r.states.insert(
+            k,
+            StateBox {
+                owner,
+                snap,
+                bytes,
+                fmi3,
+            },
+        );
         *slot = k as f::fmi2FMUstate;
         Status::Ok
     } else if let Some(b) = r.states.get_mut(&h) {
@@ -38,18 +47,21 @@ fn store_state(
     }
 }
 
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetFMUstate(c: f::fmi2Component, FMUstate: *mut f::fmi2FMUstate) -> S {
-    const F: &str = "fmi2GetFMUstate";
+/// The body of fmi2GetFMUstate and its FMI 3.0 counterpart (`f`: the function's name).
+pub(super) unsafe fn get_fmu_state(
+    c: *mut std::ffi::c_void,
+    f: &str,
+    FMUstate: *mut f::fmi2FMUstate,
+) -> Status {
     // SAFETY: `c` as in `with`; FMUstate points to the importer's fmi2FMUstate variable, which
     // fmi2GetFMUstate writes (FMI 2.0 sec. 2.1.8); `as_mut` checks null.
     unsafe {
-        with(c, F, |comp| {
+        with_status(c, f, |comp| {
             let Some(slot) = FMUstate.as_mut() else {
-                return null_arg(&mut comp.inst, F, "FMUstate");
+                return null_arg(&mut comp.inst, f, "FMUstate");
             };
             match comp.inst.try_get_state() {
-                Ok(snap) => store_state(comp, F, c as usize, slot, snap, None),
+                Ok(snap) => store_state(comp, f, c as usize, slot, snap, None),
                 Err(s) => s,
             }
         })
@@ -57,19 +69,28 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: f::fmi2Component, FMUstate: *mut f::
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi2SetFMUstate(c: f::fmi2Component, FMUstate: f::fmi2FMUstate) -> S {
-    const F: &str = "fmi2SetFMUstate";
+pub unsafe extern "C" fn fmi2GetFMUstate(c: f::fmi2Component, FMUstate: *mut f::fmi2FMUstate) -> S {
+    // SAFETY: the arguments as the standard gives them, checked in `get_fmu_state`.
+    status(unsafe { get_fmu_state(c, "fmi2GetFMUstate", FMUstate) })
+}
+
+/// The body of fmi2SetFMUstate and its FMI 3.0 counterpart (`f`: the function's name).
+pub(super) unsafe fn set_fmu_state(
+    c: *mut std::ffi::c_void,
+    f: &str,
+    FMUstate: f::fmi2FMUstate,
+) -> Status {
     // SAFETY: `c` as in `with`; FMUstate is a handle only looked up in the registry, never
     // dereferenced.
     unsafe {
-        with(c, F, |comp| {
+        with_status(c, f, |comp| {
             let h = state_handle(FMUstate);
             let r = registry();
             match r.states.get(&h) {
                 Some(b) => comp.inst.set_state(&b.snap),
                 None => {
                     drop(r);
-                    unknown_state(&mut comp.inst, F, "FMUstate", h)
+                    unknown_state(&mut comp.inst, f, "FMUstate", h)
                 }
             }
         })
@@ -77,18 +98,24 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: f::fmi2Component, FMUstate: f::fmi2F
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi2FreeFMUstate(
-    c: f::fmi2Component,
+pub unsafe extern "C" fn fmi2SetFMUstate(c: f::fmi2Component, FMUstate: f::fmi2FMUstate) -> S {
+    // SAFETY: the arguments as the standard gives them, checked in `set_fmu_state`.
+    status(unsafe { set_fmu_state(c, "fmi2SetFMUstate", FMUstate) })
+}
+
+/// The body of fmi2FreeFMUstate and its FMI 3.0 counterpart (`f`: the function's name).
+pub(super) unsafe fn free_fmu_state(
+    c: *mut std::ffi::c_void,
+    f: &str,
     FMUstate: *mut f::fmi2FMUstate,
-) -> S {
-    const F: &str = "fmi2FreeFMUstate";
+) -> Status {
     // SAFETY: `c` as in `with`; FMUstate points to the importer's fmi2FMUstate variable, which
     // fmi2FreeFMUstate sets to null (FMI 2.0 sec. 2.1.8); `as_mut` checks null; the state
     // itself is a registry handle.
     unsafe {
-        with(c, F, |comp| {
+        with_status(c, f, |comp| {
             let Some(slot) = FMUstate.as_mut() else {
-                return null_arg(&mut comp.inst, F, "FMUstate");
+                return null_arg(&mut comp.inst, f, "FMUstate");
             };
             let h = state_handle(*slot);
             if h == 0 {
@@ -101,18 +128,60 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(
                     *slot = std::ptr::null_mut();
                     Status::Ok
                 }
-                None => unknown_state(&mut comp.inst, F, "*FMUstate", h),
+                None => unknown_state(&mut comp.inst, f, "*FMUstate", h),
             }
         })
     }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2FreeFMUstate(
+    c: f::fmi2Component,
+    FMUstate: *mut f::fmi2FMUstate,
+) -> S {
+    // SAFETY: the arguments as the standard gives them, checked in `free_fmu_state`.
+    status(unsafe { free_fmu_state(c, "fmi2FreeFMUstate", FMUstate) })
 }
 
 /// The serialized bytes of a live state (computed once), or None for an unknown handle.
 fn with_state_bytes<T>(h: usize, f: impl FnOnce(&[u8]) -> T) -> Option<T> {
     let mut r = registry();
     let b = r.states.get_mut(&h)?;
-    let bytes = b.bytes.get_or_insert_with(|| state::serialize(&b.snap));
+    let fmi3 = b.fmi3;
+    let bytes = b.bytes.get_or_insert_with(|| {
+        if fmi3 {
+            state::serialize3(&b.snap)
+        } else {
+            state::serialize(&b.snap)
+        }
+    });
     Some(f(bytes))
+}
+
+/// The body of fmi2SerializedFMUstateSize and its FMI 3.0 counterpart (`f`: the function's name).
+pub(super) unsafe fn serialized_size(
+    c: *mut std::ffi::c_void,
+    f: &str,
+    FMUstate: f::fmi2FMUstate,
+    size: *mut usize,
+) -> Status {
+    // SAFETY: `c` as in `with`; size points to a writable size_t (FMI 2.0 sec. 2.1.8), null-
+    // checked by `as_mut`; FMUstate is a registry handle.
+    unsafe {
+        with_status(c, f, |comp| {
+            let Some(size) = size.as_mut() else {
+                return null_arg(&mut comp.inst, f, "size");
+            };
+            let h = state_handle(FMUstate);
+            match with_state_bytes(h, |b| b.len()) {
+                Some(n) => {
+                    *size = n;
+                    Status::Ok
+                }
+                None => unknown_state(&mut comp.inst, f, "FMUstate", h),
+            }
+        })
+    }
 }
 
 #[no_mangle]
@@ -121,21 +190,40 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     FMUstate: f::fmi2FMUstate,
     size: *mut usize,
 ) -> S {
-    const F: &str = "fmi2SerializedFMUstateSize";
-    // SAFETY: `c` as in `with`; size points to a writable size_t (FMI 2.0 sec. 2.1.8), null-
-    // checked by `as_mut`; FMUstate is a registry handle.
+    // SAFETY: the arguments as the standard gives them, checked in `serialized_size`.
+    status(unsafe { serialized_size(c, "fmi2SerializedFMUstateSize", FMUstate, size) })
+}
+
+/// The body of fmi2SerializeFMUstate and its FMI 3.0 counterpart (`f`: the function's name).
+pub(super) unsafe fn serialize_fmu_state(
+    c: *mut std::ffi::c_void,
+    f: &str,
+    FMUstate: f::fmi2FMUstate,
+    serializedState: *mut u8,
+    size: usize,
+) -> Status {
+    // SAFETY: `c` as in `with`; serializedState is a writable buffer of `size` bytes (FMI 2.0
+    // sec. 2.1.8): only bytes.len() <= size of them are written, after a null check.
     unsafe {
-        with(c, F, |comp| {
-            let Some(size) = size.as_mut() else {
-                return null_arg(&mut comp.inst, F, "size");
-            };
+        with_status(c, f, |comp| {
             let h = state_handle(FMUstate);
-            match with_state_bytes(h, |b| b.len()) {
-                Some(n) => {
-                    *size = n;
-                    Status::Ok
+            let r = with_state_bytes(h, |bytes| {
+                if size < bytes.len() {
+                    return Err(format!(
+                        "{f}: buffer of {size} bytes, the state needs {} (fmi2SerializedFMUstateSize)",
+                        bytes.len()
+                    ));
                 }
-                None => unknown_state(&mut comp.inst, F, "FMUstate", h),
+                let Some(out) = slice_mut(serializedState, bytes.len()) else {
+                    return Err(format!("{f}: serializedState is a null pointer"));
+                };
+                out.copy_from_slice(bytes);
+                Ok(())
+            });
+            match r {
+                None => unknown_state(&mut comp.inst, f, "FMUstate", h),
+                Some(Err(e)) => comp.inst.error(e),
+                Some(Ok(())) => Status::Ok,
             }
         })
     }
@@ -148,30 +236,44 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     serializedState: *mut f::fmi2Byte,
     size: usize,
 ) -> S {
-    const F: &str = "fmi2SerializeFMUstate";
-    // SAFETY: `c` as in `with`; serializedState is a writable buffer of `size` bytes (FMI 2.0
-    // sec. 2.1.8): only bytes.len() <= size of them are written, after a null check.
+    // SAFETY: the arguments as the standard gives them, checked in `serialize_fmu_state`.
+    status(unsafe {
+        serialize_fmu_state(
+            c,
+            "fmi2SerializeFMUstate",
+            FMUstate,
+            serializedState as *mut u8,
+            size,
+        )
+    })
+}
+
+/// The body of fmi2DeSerializeFMUstate and its FMI 3.0 counterpart (`f`: the function's name).
+pub(super) unsafe fn deserialize_fmu_state(
+    c: *mut std::ffi::c_void,
+    f: &str,
+    serializedState: *const u8,
+    size: usize,
+    FMUstate: *mut f::fmi2FMUstate,
+) -> Status {
+    // SAFETY: `c` as in `with`; serializedState is an array of `size` bytes and FMUstate a
+    // writable fmi2FMUstate variable (FMI 2.0 sec. 2.1.8), null-checked by `slice` and
+    // `as_mut`; the bytes are copied.
     unsafe {
-        with(c, F, |comp| {
-            let h = state_handle(FMUstate);
-            let r = with_state_bytes(h, |bytes| {
-                if size < bytes.len() {
-                    return Err(format!(
-                        "{F}: buffer of {size} bytes, the state needs {} (fmi2SerializedFMUstateSize)",
-                        bytes.len()
-                    ));
-                }
-                let Some(out) = slice_mut(serializedState as *mut u8, bytes.len()) else {
-                    return Err(format!("{F}: serializedState is a null pointer"));
-                };
-                out.copy_from_slice(bytes);
-                Ok(())
-            });
-            match r {
-                None => unknown_state(&mut comp.inst, F, "FMUstate", h),
-                Some(Err(e)) => comp.inst.error(e),
-                Some(Ok(())) => Status::Ok,
-            }
+        with_status(c, f, |comp| {
+            let (Some(data), Some(slot)) = (slice(serializedState, size), FMUstate.as_mut()) else {
+                return null_arg(&mut comp.inst, f, "serializedState or FMUstate");
+            };
+            let parsed = if comp.v3.is_some() {
+                state::deserialize3(data)
+            } else {
+                state::deserialize(data)
+            };
+            let snap = match parsed {
+                Ok(s) => s,
+                Err(e) => return comp.inst.error(format!("{f}: {e}")),
+            };
+            store_state(comp, f, c as usize, slot, snap, Some(data.to_vec()))
         })
     }
 }
@@ -183,22 +285,14 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     FMUstate: *mut f::fmi2FMUstate,
 ) -> S {
-    const F: &str = "fmi2DeSerializeFMUstate";
-    // SAFETY: `c` as in `with`; serializedState is an array of `size` bytes and FMUstate a
-    // writable fmi2FMUstate variable (FMI 2.0 sec. 2.1.8), null-checked by `slice` and
-    // `as_mut`; the bytes are copied.
-    unsafe {
-        with(c, F, |comp| {
-            let (Some(data), Some(slot)) =
-                (slice(serializedState as *const u8, size), FMUstate.as_mut())
-            else {
-                return null_arg(&mut comp.inst, F, "serializedState or FMUstate");
-            };
-            let snap = match state::deserialize(data) {
-                Ok(s) => s,
-                Err(e) => return comp.inst.error(format!("{F}: {e}")),
-            };
-            store_state(comp, F, c as usize, slot, snap, Some(data.to_vec()))
-        })
-    }
+    // SAFETY: the arguments as the standard gives them, checked in `deserialize_fmu_state`.
+    status(unsafe {
+        deserialize_fmu_state(
+            c,
+            "fmi2DeSerializeFMUstate",
+            serializedState as *const u8,
+            size,
+            FMUstate,
+        )
+    })
 }

@@ -43,7 +43,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
             };
             // SAFETY: logger and env come from this fmi2Instantiate call's
             // fmi2CallbackFunctions, valid while it runs (FMI 2.0 sec. 2.1.5).
-            unsafe { emit(logger, env, &cname, &m) };
+            unsafe { emit(Logger::Fmi2(logger, env), &cname, &m) };
             std::ptr::null_mut()
         };
         if fmuType != f::fmi2Type_fmi2CoSimulation {
@@ -62,10 +62,10 @@ pub unsafe extern "C" fn fmi2Instantiate(
         let inst = Instance::new(&name, res, loggingOn != 0);
         let mut comp = Box::new(Component {
             inst,
-            logger,
-            env,
+            logger: Logger::Fmi2(logger, env),
             name: cname,
             strings: Vec::new(),
+            v3: None,
         });
         flush(&mut comp);
         register(comp)
@@ -75,6 +75,11 @@ pub unsafe extern "C" fn fmi2Instantiate(
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeInstance(c: f::fmi2Component) {
+    free_instance(c, "fmi2FreeInstance");
+}
+
+/// Frees the instance behind `c` and its FMU states (fmi2FreeInstance, fmi3FreeInstance).
+pub(super) fn free_instance(c: *mut std::ffi::c_void, func: &str) {
     let h = c as usize;
     if h == 0 {
         return;
@@ -103,7 +108,7 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: f::fmi2Component) {
             // removed from the registry, so it is freed exactly once; fmi2FreeInstance is the
             // instance's last call (FMI 2.0 sec. 2.1.5), and later calls with `c` are refused.
             Some(p) => drop(unsafe { Box::from_raw(p as *mut Component) }),
-            None => unknown_handle("fmi2FreeInstance", "fmi2Component", h),
+            None => unknown_handle(func, "instance", h),
         }
     }));
 }
@@ -115,19 +120,39 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     nCategories: usize,
     categories: *const f::fmi2String,
 ) -> S {
-    // SAFETY: `c` as in `with`; fmi2SetDebugLogging passes categories as an array of
-    // nCategories NUL-terminated strings (FMI 2.0 sec. 2.1.5): `slice` checks the array for
-    // null, `cstr` each string.
+    // SAFETY: as `set_debug_logging`.
+    status(unsafe {
+        set_debug_logging(
+            c,
+            "fmi2SetDebugLogging",
+            loggingOn != 0,
+            nCategories,
+            categories,
+        )
+    })
+}
+
+/// The body of fmi2SetDebugLogging and fmi3SetDebugLogging (`func`: the function's name).
+pub(super) unsafe fn set_debug_logging(
+    c: *mut std::ffi::c_void,
+    func: &str,
+    on: bool,
+    nCategories: usize,
+    categories: *const *const c_char,
+) -> Status {
+    // SAFETY: `c` as in `with`; fmi2SetDebugLogging and fmi3SetDebugLogging pass categories
+    // as an array of nCategories NUL-terminated strings (FMI 2.0 sec. 2.1.5, FMI 3.0 sec.
+    // 2.3.1): `slice` checks the array for null, `cstr` each string.
     unsafe {
-        with(c, "fmi2SetDebugLogging", |comp| {
+        with_status(c, func, |comp| {
             let Some(cats) = slice(categories, nCategories) else {
-                return null_arg(&mut comp.inst, "fmi2SetDebugLogging", "categories");
+                return null_arg(&mut comp.inst, func, "categories");
             };
             let names: Vec<String> = cats
                 .iter()
                 .map(|p| cstr(*p).unwrap_or("<null>").to_string())
                 .collect();
-            comp.inst.set_debug_logging(loggingOn != 0, &names)
+            comp.inst.set_debug_logging(on, &names)
         })
     }
 }

@@ -22,6 +22,7 @@ use crate::model_description::{guid, MODEL_IDENTIFIER};
 use crate::state;
 use crate::vars::Value;
 use fmi_sys::fmi2 as f;
+use fmi_sys::fmi3 as f3;
 use std::collections::BTreeMap;
 use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -42,14 +43,26 @@ fn status(s: Status) -> S {
     }
 }
 
-/// What fmi2Instantiate returns: the instance plus the importer's callbacks.
+/// The importer's logger callback of an instance and its environment pointer, as the
+/// instance's API gives them.
+#[derive(Clone, Copy)]
+enum Logger {
+    /// fmi2CallbackLogger (printf-style, with the instance name).
+    Fmi2(f::fmi2CallbackLogger, f::fmi2ComponentEnvironment),
+    /// fmi3LogMessageCallback (the message as is).
+    Fmi3(f3::fmi3LogMessageCallback, f3::fmi3InstanceEnvironment),
+}
+
+/// What fmi2Instantiate or fmi3InstantiateCoSimulation returns: the instance plus the
+/// importer's callbacks.
 struct Component {
     inst: Instance,
-    logger: f::fmi2CallbackLogger,
-    env: f::fmi2ComponentEnvironment,
+    logger: Logger,
     name: CString,
-    /// Strings handed out by the last fmi2GetString (valid until the next call).
+    /// Strings handed out by the last fmi2GetString/fmi3GetString (valid until the next call).
     strings: Vec<CString>,
+    /// What only an FMI 3.0 instance has (None for FMI 2.0).
+    v3: Option<fmi3::Part>,
 }
 
 /// An FMU state handed to the importer.
@@ -58,6 +71,8 @@ struct StateBox {
     owner: usize,
     snap: Snapshot,
     bytes: Option<Vec<u8>>,
+    /// Made by an FMI 3.0 instance (serialized in the FMI 3.0 FMU's format).
+    fmi3: bool,
 }
 
 /// The live objects behind the handles given to the importer.
@@ -123,14 +138,17 @@ fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
     }
 }
 
-unsafe fn emit(
-    logger: f::fmi2CallbackLogger,
-    env: f::fmi2ComponentEnvironment,
-    name: &CStr,
-    m: &LogMsg,
-) {
-    if let Some(log) = logger {
-        let cat = CString::new(m.category).unwrap_or_default();
+unsafe fn emit(logger: Logger, name: &CStr, m: &LogMsg) {
+    let cat = CString::new(m.category).unwrap_or_default();
+    if let Logger::Fmi3(Some(log), env) = logger {
+        let text = CString::new(fmi3::names(&m.text).replace('\0', " ")).unwrap_or_default();
+        // SAFETY: `log` is the importer's fmi3LogMessageCallback, which FMI 3.0 (sec. 2.3.1)
+        // makes callable with the instanceEnvironment given with it and NUL-terminated
+        // strings (the message is not a format string); both are CStrings alive during the call.
+        unsafe { log(env, fmi3::status3(m.status), cat.as_ptr(), text.as_ptr()) };
+        return;
+    }
+    if let Logger::Fmi2(Some(log), env) = logger {
         let text = escape_percent(&m.text);
         // The message is formatted here; '%' is escaped, so the importer's printf-style
         // formatting sees no conversion specifiers and reads no variadic arguments.
@@ -152,9 +170,10 @@ unsafe fn emit(
 fn flush(comp: &mut Component) {
     let logs = comp.inst.take_logs();
     for m in &logs {
-        // SAFETY: logger and env are those the importer gave to fmi2Instantiate; it keeps them
-        // valid until fmi2FreeInstance (FMI 2.0 sec. 2.1.5, fmi2CallbackFunctions).
-        unsafe { emit(comp.logger, comp.env, &comp.name, m) };
+        // SAFETY: logger and env are those the importer gave to fmi2Instantiate or
+        // fmi3InstantiateCoSimulation; it keeps them valid until the instance is freed (FMI
+        // 2.0 sec. 2.1.5, FMI 3.0 sec. 2.3.1).
+        unsafe { emit(comp.logger, &comp.name, m) };
     }
 }
 
@@ -168,13 +187,28 @@ fn register(comp: Box<Component>) -> f::fmi2Component {
 
 /// Runs `body` on the component behind `c`: registry check, catch_unwind, log flushing.
 unsafe fn with(c: f::fmi2Component, func: &str, body: impl FnOnce(&mut Component) -> Status) -> S {
+    // SAFETY: as `with_status`.
+    status(unsafe { with_status(c, func, body) })
+}
+
+/// [`with`] for both APIs: the status of the call (Error for a handle that is not live).
+unsafe fn with_status(
+    c: *mut std::ffi::c_void,
+    func: &str,
+    body: impl FnOnce(&mut Component) -> Status,
+) -> Status {
     let h = c as usize;
     let ptr = registry().comps.get(&h).copied();
     let Some(ptr) = ptr else {
         if h != 0 {
-            unknown_handle(func, "fmi2Component", h);
+            let what = if func.starts_with("fmi3") {
+                "fmi3Instance"
+            } else {
+                "fmi2Component"
+            };
+            unknown_handle(func, what, h);
         }
-        return ERROR;
+        return Status::Error;
     };
     // SAFETY: the address is that of a live Box<Component> (in the registry until
     // fmi2FreeInstance); the importer calls one instance from one thread at a time (an FMI
@@ -185,9 +219,9 @@ unsafe fn with(c: f::fmi2Component, func: &str, body: impl FnOnce(&mut Component
         Err(p) => comp.inst.internal_error(func, &panic_text(&*p)),
     };
     if catch_unwind(AssertUnwindSafe(|| flush(comp))).is_err() {
-        return ERROR;
+        return Status::Error;
     }
-    status(st)
+    st
 }
 
 /// Reads a C string (None for null or non-UTF-8).
@@ -233,6 +267,7 @@ fn null_arg(inst: &mut Instance, func: &str, what: &str) -> Status {
 }
 
 mod cosim;
+pub mod fmi3;
 mod fmu_state;
 mod lifecycle;
 mod unsupported;
@@ -328,10 +363,13 @@ mod tests {
         log::set_max_level(log::LevelFilter::Trace);
         let comp = Box::new(Component {
             inst: Instance::new("panicky", None, false),
-            logger: Some(fmi_sys::fmi2::logger::callback_logger_handler),
-            env: std::ptr::null_mut(),
+            logger: Logger::Fmi2(
+                Some(fmi_sys::fmi2::logger::callback_logger_handler),
+                std::ptr::null_mut(),
+            ),
             name: CString::new("panicky").unwrap_or_default(),
             strings: Vec::new(),
+            v3: None,
         });
         let c = register(comp);
         // SAFETY: `c` is the handle `register` just returned; this test is its only user.

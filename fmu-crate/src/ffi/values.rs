@@ -90,21 +90,51 @@ pub unsafe extern "C" fn fmi2GetString(
             let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
                 return null_arg(&mut comp.inst, F, "vr or value");
             };
-            comp.strings.clear();
-            for r in vrs {
-                match comp.inst.get_string(*r) {
-                    Ok(s) => comp
-                        .strings
-                        .push(CString::new(s.replace('\0', " ")).unwrap_or_default()),
-                    Err(s) => return s,
-                }
-            }
-            for (o, s) in out.iter_mut().zip(comp.strings.iter()) {
-                *o = s.as_ptr();
-            }
-            Status::Ok
+            get_strings(comp, vrs, out)
         })
     }
+}
+
+/// Writes the strings of `vrs` to `out` (fmi2GetString, fmi3GetString): they live in
+/// `comp.strings` until the next call on the instance.
+pub(super) fn get_strings(comp: &mut Component, vrs: &[u32], out: &mut [*const c_char]) -> Status {
+    comp.strings.clear();
+    for r in vrs {
+        match comp.inst.get_string(*r) {
+            Ok(s) => comp
+                .strings
+                .push(CString::new(s.replace('\0', " ")).unwrap_or_default()),
+            Err(s) => return s,
+        }
+    }
+    for (o, s) in out.iter_mut().zip(comp.strings.iter()) {
+        *o = s.as_ptr();
+    }
+    Status::Ok
+}
+
+/// The values of a set of strings (fmi2SetString, fmi3SetString), copied; a null or
+/// non-UTF-8 string refuses the call.
+///
+/// # Safety
+/// Each non-null pointer of `vals` is a NUL-terminated string.
+pub(super) unsafe fn string_values(
+    comp: &mut Component,
+    func: &str,
+    vrs: &[u32],
+    vals: &[*const c_char],
+) -> Result<Vec<(u32, Value)>, Status> {
+    let mut items = Vec::with_capacity(vrs.len());
+    for (r, p) in vrs.iter().zip(vals.iter()) {
+        // SAFETY: the caller's promise; `cstr` checks null.
+        let Some(s) = (unsafe { cstr(*p) }) else {
+            return Err(comp.inst.error(format!(
+                "{func}: value for value reference {r} is a null pointer or not UTF-8; no value of this call was applied"
+            )));
+        };
+        items.push((*r, Value::String(s.to_string())));
+    }
+    Ok(items)
 }
 
 #[no_mangle]
@@ -123,16 +153,10 @@ pub unsafe extern "C" fn fmi2SetString(
             let (Some(vrs), Some(vals)) = (slice(vr, nvr), slice(value, nvr)) else {
                 return null_arg(&mut comp.inst, F, "vr or value");
             };
-            let mut items = Vec::with_capacity(vrs.len());
-            for (r, p) in vrs.iter().zip(vals.iter()) {
-                let Some(s) = cstr(*p) else {
-                    return comp.inst.error(format!(
-                        "{F}: value for value reference {r} is a null pointer or not UTF-8; no value of this call was applied"
-                    ));
-                };
-                items.push((*r, Value::String(s.to_string())));
+            match string_values(comp, F, vrs, vals) {
+                Ok(items) => comp.inst.set_values(F, &items),
+                Err(s) => s,
             }
-            comp.inst.set_values(F, &items)
         })
     }
 }

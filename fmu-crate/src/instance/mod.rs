@@ -273,6 +273,14 @@ impl Instance {
         inst
     }
 
+    /// A new instance of the FMI 3.0 FMU; `resource_dir` is the importer's resourcePath (an
+    /// absolute path of the resources folder, with or without a trailing separator).
+    pub fn new_with_resource_dir(name: &str, resource_dir: Option<&str>, logging_on: bool) -> Self {
+        let mut inst = Self::new(name, None, logging_on);
+        inst.resources = resource_dir.filter(|d| !d.is_empty()).map(PathBuf::from);
+        inst
+    }
+
     fn reset_values(&mut self) {
         self.settings = Settings::default();
         for v in &self.table {

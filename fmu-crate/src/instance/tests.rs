@@ -330,8 +330,8 @@ fn the_default_rel_tol_runs_in_real_time_at_20_m_s_and_an_explicit_grid_turns_it
     use creep_core::tolerance::{self, Filter};
     // The FMU's choice at 20 m/s: it does not know the step at initialization, so it takes
     // the grid that meets rel_tol at the lowest cost over the speed's steps; the table's cost
-    // of that grid at 0.25 ms steps is below real time for each preset (dry since the 14x3
-    // rows of issue 24 step 9; before, 20x5 cells-ho at 1.1x)
+    // of that grid at 0.25 ms steps is below real time for each preset (dry: 14x3 cells-ho,
+    // docs/fmu.md "Grid and scheme for a tolerance"; history: docs/history.md)
     let cost_at_quarter_ms = |c: &tolerance::Choice, preset: Option<&'static str>| {
         let only = Filter {
             preset,

@@ -1,6 +1,7 @@
 //! Getting and setting variables by value reference: the lookup, the phase and causality checks, parameters as set or resolved, outputs of the last step or of the steady state in initialization mode.
 
 use super::*;
+use creep_core::FieldPoint;
 
 impl Instance {
     fn var(&mut self, func: &str, vr: u32, kind: Kind) -> Result<Var, Status> {
@@ -193,6 +194,17 @@ impl Instance {
                 Err(self.error(format!("{func}: {}: configuration error: {e}", v.name)))
             }
             None => Err(self.error(format!("{func}: {} is not a parameter", v.name))),
+        }
+    }
+
+    /// The field of the strip nearest y = 0 at its nodes (None for Polach, which has no
+    /// bristle grid) and the semi-axis a, m, as the outputs are read: after initialization
+    /// those of the last step, in initialization mode those of the steady state.
+    pub fn field(&mut self, func: &str) -> Result<(Option<Vec<FieldPoint>>, f64), Status> {
+        self.check_gettable(func)?;
+        match self.current_outputs() {
+            Ok(o) => Ok((self.model.as_ref().and_then(|m| m.field_y0()), o.a)),
+            Err(e) => Err(self.error(format!("{func}: the fields cannot be computed: {e}"))),
         }
     }
 

@@ -1,8 +1,12 @@
-/* A plain-C FMI 2.0 importer of the ecf_contact binary: the same program runs the linux64 .so
- * natively and the win64 .dll under Wine (tests-py/test_platforms.py), and their outputs are
- * compared line by line.
+/* A plain-C FMI 2.0 or FMI 3.0 importer of the ecf_contact binary: the same program runs the
+ * x86_64 Linux .so natively, the Windows .dll under Wine and the aarch64 Linux .so under
+ * qemu-user (tests-py/test_platforms.py), and their outputs are compared line by line; the
+ * FMI 2.0 and FMI 3.0 builds of it are compared with each other too.
  *
- * It loads the shared library by path, resolves the fmi2* functions by name, and runs, with
+ * Built with -DECF_FMI3 it drives the FMI 3.0 API (fmi3* functions, the resources folder as a
+ * path, not a URI) and prints, at the end of each scenario, the field arrays (n_field points
+ * each) beside the outputs. It loads the shared library by path, resolves the functions of its
+ * API by name, and runs, with
  * the FMU's own exported functions only (no fmpy, no Rust):
  *   run RES_URI                 scenarios: several presets, 0.1 and 1 ms steps, the threads and
  *                               scheme parameters, a relative config_file resolved against the
@@ -16,12 +20,16 @@
  * Every number is printed with %.17g (round-trip exact). Exit code 0 when every call returned
  * what the scenario expects, 1 otherwise (the failing call is printed on stderr).
  *
- * Build: gcc -O1 -o driver driver.c -ldl      (Linux)
+ * Build: gcc -O1 -o driver driver.c -ldl      (Linux; add -DECF_FMI3 for FMI 3.0)
  *        x86_64-w64-mingw32-gcc -O1 -o driver.exe driver.c   (Windows)
- * The FMI 2.0 types and signatures below are those of the standard's fmi2TypesPlatform.h and
- * fmi2FunctionTypes.h (kept here so the driver needs no header path).
+ *        aarch64-linux-gnu-gcc -O1 -o driver-arm64 driver.c -ldl   (ARM64 Linux, run by qemu-aarch64)
+ * The FMI 2.0 and 3.0 types and signatures below are those of the standard's headers
+ * (fmi2TypesPlatform.h, fmi2FunctionTypes.h, fmi3PlatformTypes.h, fmi3FunctionTypes.h), the
+ * few this driver calls, kept here so that it needs no header path.
  */
 #include <stdarg.h>
+#include <stdbool.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -79,8 +87,29 @@ typedef fmi2Status (*Serialize_t)(fmi2Component, fmi2FMUstate, fmi2Byte *, size_
 typedef fmi2Status (*Deserialize_t)(fmi2Component, const fmi2Byte *, size_t, fmi2FMUstate *);
 typedef const char *(*Version_t)(void);
 
+/* FMI 3.0: the functions whose signatures differ from FMI 2.0's */
+typedef void *fmi3InstanceEnvironment;
+typedef void (*fmi3LogMessageCallback)(fmi3InstanceEnvironment, int, const char *, const char *);
+typedef void *(*Instantiate3_t)(const char *, const char *, const char *, bool, bool, bool, bool, const unsigned int *, size_t,
+                                fmi3InstanceEnvironment, fmi3LogMessageCallback, void *);
+typedef fmi2Status (*EnterInit3_t)(fmi2Component, bool, double, double, bool, double);
+typedef fmi2Status (*SetFloat64_t)(fmi2Component, const fmi2ValueReference *, size_t, const double *, size_t);
+typedef fmi2Status (*GetFloat64_t)(fmi2Component, const fmi2ValueReference *, size_t, double *, size_t);
+typedef fmi2Status (*SetInt32_t)(fmi2Component, const fmi2ValueReference *, size_t, const int32_t *, size_t);
+typedef fmi2Status (*GetInt32_t)(fmi2Component, const fmi2ValueReference *, size_t, int32_t *, size_t);
+typedef fmi2Status (*SetString3_t)(fmi2Component, const fmi2ValueReference *, size_t, const char *const *, size_t);
+typedef fmi2Status (*DoStep3_t)(fmi2Component, double, double, bool, bool *, bool *, bool *, double *);
+
 static struct {
     Instantiate_t instantiate;
+    Instantiate3_t instantiate3;
+    EnterInit3_t enter_init3;
+    SetFloat64_t set_float64;
+    GetFloat64_t get_float64;
+    SetInt32_t set_int32;
+    GetInt32_t get_int32;
+    SetString3_t set_string3;
+    DoStep3_t do_step3;
     FreeInstance_t free_instance;
     SetupExperiment_t setup;
     Comp_t enter_init, exit_init, terminate;
@@ -103,6 +132,11 @@ enum { VR_CX = 1, VR_V = 4, VR_FN = 5, VR_TBULK = 6, VR_THREADS = 43, VR_SCHEME 
 static const fmi2ValueReference OUT_VR[] = {10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22};
 static const char *OUT_NAME[] = {"Fx", "Fy", "Mz", "f", "T_max", "T_mean", "P_fric", "frac_elastic", "frac_plastic", "frac_sliding", "a", "b", "p0"};
 #define N_OUT (sizeof OUT_VR / sizeof OUT_VR[0])
+/* the field arrays of the FMI 3.0 FMU (n_field points each) and n_field's start value */
+enum { VR_FIELD_X = 201, VR_FIELD_REGIME = 206, N_FIELD = 80 };
+#ifdef ECF_FMI3
+static const char *FIELD_NAME[] = {"field_x", "field_p", "field_tau_x", "field_tau_c2", "field_T"};
+#endif
 static const char *FMU_GUID = "";
 static int failures = 0;
 
@@ -125,9 +159,17 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status st,
     fprintf(stderr, "[log %s %d %s] %s\n", name ? name : "?", (int)st, cat ? cat : "?", buf);
 }
 
+#ifdef ECF_FMI3
+static void logger3(fmi3InstanceEnvironment env, int st, const char *cat, const char *msg) {
+    logger(env, "fmi3", (fmi2Status)st, cat, "%s", msg ? msg : "(null)");
+}
+#endif
+
+#ifndef ECF_FMI3
 static void *alloc_mem(size_t n, size_t size) { return calloc(n, size); }
 
 static const fmi2CallbackFunctions CALLBACKS = {logger, alloc_mem, free, NULL, NULL};
+#endif
 
 #define CHECK(call, want)                                                                      \
     do {                                                                                       \
@@ -158,6 +200,26 @@ static void load(const char *path) {
 #endif
         exit(2);
     }
+#ifdef ECF_FMI3
+    F.instantiate3 = (Instantiate3_t)sym(lib, "fmi3InstantiateCoSimulation");
+    F.free_instance = (FreeInstance_t)sym(lib, "fmi3FreeInstance");
+    F.enter_init3 = (EnterInit3_t)sym(lib, "fmi3EnterInitializationMode");
+    F.exit_init = (Comp_t)sym(lib, "fmi3ExitInitializationMode");
+    F.terminate = (Comp_t)sym(lib, "fmi3Terminate");
+    F.set_float64 = (SetFloat64_t)sym(lib, "fmi3SetFloat64");
+    F.get_float64 = (GetFloat64_t)sym(lib, "fmi3GetFloat64");
+    F.set_int32 = (SetInt32_t)sym(lib, "fmi3SetInt32");
+    F.get_int32 = (GetInt32_t)sym(lib, "fmi3GetInt32");
+    F.set_string3 = (SetString3_t)sym(lib, "fmi3SetString");
+    F.do_step3 = (DoStep3_t)sym(lib, "fmi3DoStep");
+    F.get_state = (GetState_t)sym(lib, "fmi3GetFMUState");
+    F.set_state = (SetState_t)sym(lib, "fmi3SetFMUState");
+    F.free_state = (FreeState_t)sym(lib, "fmi3FreeFMUState");
+    F.state_size = (StateSize_t)sym(lib, "fmi3SerializedFMUStateSize");
+    F.serialize = (Serialize_t)sym(lib, "fmi3SerializeFMUState");
+    F.deserialize = (Deserialize_t)sym(lib, "fmi3DeserializeFMUState");
+    F.version = (Version_t)sym(lib, "fmi3GetVersion");
+#else
     F.instantiate = (Instantiate_t)sym(lib, "fmi2Instantiate");
     F.free_instance = (FreeInstance_t)sym(lib, "fmi2FreeInstance");
     F.setup = (SetupExperiment_t)sym(lib, "fmi2SetupExperiment");
@@ -176,6 +238,90 @@ static void load(const char *path) {
     F.serialize = (Serialize_t)sym(lib, "fmi2SerializeFMUstate");
     F.deserialize = (Deserialize_t)sym(lib, "fmi2DeSerializeFMUstate");
     F.version = (Version_t)sym(lib, "fmi2GetVersion");
+#endif
+}
+
+/* The calls whose signatures differ between the APIs, with FMI 2.0's arguments. */
+static fmi2Component instantiate(const char *label, const char *res) {
+#ifdef ECF_FMI3
+    return F.instantiate3(label, FMU_GUID, res, false, false, false, false, NULL, 0, NULL, logger3, NULL);
+#else
+    return F.instantiate(label, fmi2CoSimulation, FMU_GUID, res, &CALLBACKS, 0, 0);
+#endif
+}
+static fmi2Status set_real(fmi2Component c, const fmi2ValueReference *vr, size_t n, const fmi2Real *x) {
+#ifdef ECF_FMI3
+    return F.set_float64(c, vr, n, x, n);
+#else
+    return F.set_real(c, vr, n, x);
+#endif
+}
+static fmi2Status get_real(fmi2Component c, const fmi2ValueReference *vr, size_t n, fmi2Real *x) {
+#ifdef ECF_FMI3
+    return F.get_float64(c, vr, n, x, n);
+#else
+    return F.get_real(c, vr, n, x);
+#endif
+}
+static fmi2Status set_integer(fmi2Component c, const fmi2ValueReference *vr, size_t n, const fmi2Integer *x) {
+#ifdef ECF_FMI3
+    return F.set_int32(c, vr, n, (const int32_t *)x, n);
+#else
+    return F.set_integer(c, vr, n, x);
+#endif
+}
+static fmi2Status set_string(fmi2Component c, const fmi2ValueReference *vr, size_t n, const fmi2String *x) {
+#ifdef ECF_FMI3
+    return F.set_string3(c, vr, n, x, n);
+#else
+    return F.set_string(c, vr, n, x);
+#endif
+}
+/* fmi2SetupExperiment + fmi2EnterInitializationMode, or fmi3EnterInitializationMode */
+static fmi2Status enter_init(fmi2Component c) {
+#ifdef ECF_FMI3
+    return F.enter_init3(c, false, 0.0, 0.0, false, 0.0);
+#else
+    fmi2Status st = F.setup(c, 0, 0.0, 0.0, 0, 0.0);
+    return st == fmi2OK ? F.enter_init(c) : st;
+#endif
+}
+static fmi2Status do_step(fmi2Component c, double t, double h) {
+#ifdef ECF_FMI3
+    bool event = true, terminate = true, early = true;
+    double last = -1.0;
+    fmi2Status st = F.do_step3(c, t, h, true, &event, &terminate, &early, &last);
+    if (st == fmi2OK && (event || terminate || early || last != t + h)) {
+        fprintf(stderr, "FAIL: fmi3DoStep out-arguments %d %d %d %.17g\n", event, terminate, early, last);
+        failures++;
+    }
+    return st;
+#else
+    return F.do_step(c, t, h, 1);
+#endif
+}
+
+/* FMI 3.0: prints the field arrays (N_FIELD points each, the start value of n_field) */
+static void print_field(const char *label, fmi2Component comp) {
+#ifdef ECF_FMI3
+    static double x[N_FIELD];
+    static int32_t r[N_FIELD];
+    for (unsigned int k = 0; k < 5; k++) {
+        fmi2ValueReference vr = VR_FIELD_X + k;
+        CHECK(F.get_float64(comp, &vr, 1, x, N_FIELD), fmi2OK);
+        printf("%s %s", label, FIELD_NAME[k]);
+        for (int i = 0; i < N_FIELD; i++) printf(" %.17g", x[i]);
+        printf("\n");
+    }
+    fmi2ValueReference vr = VR_FIELD_REGIME;
+    CHECK(F.get_int32(comp, &vr, 1, r, N_FIELD), fmi2OK);
+    printf("%s field_regime", label);
+    for (int i = 0; i < N_FIELD; i++) printf(" %d", (int)r[i]);
+    printf("\n");
+#else
+    (void)label;
+    (void)comp;
+#endif
 }
 
 typedef struct {
@@ -188,38 +334,37 @@ typedef struct {
 } Case;
 
 static fmi2Component start(const Case *c, const char *res) {
-    fmi2Component comp = F.instantiate(c->label, fmi2CoSimulation, FMU_GUID, res, &CALLBACKS, 0, 0);
+    fmi2Component comp = instantiate(c->label, res);
     if (!comp) {
-        fprintf(stderr, "FAIL: fmi2Instantiate returned NULL for %s\n", c->label);
+        fprintf(stderr, "FAIL: instantiation returned NULL for %s\n", c->label);
         exit(1);
     }
     fmi2ValueReference vr;
     if (c->preset) {
         vr = VR_PRESET;
-        CHECK(F.set_string(comp, &vr, 1, &c->preset), fmi2OK);
+        CHECK(set_string(comp, &vr, 1, &c->preset), fmi2OK);
     }
     if (c->config_file) {
         vr = VR_CONFIG;
-        CHECK(F.set_string(comp, &vr, 1, &c->config_file), fmi2OK);
+        CHECK(set_string(comp, &vr, 1, &c->config_file), fmi2OK);
     }
     if (c->threads) {
         vr = VR_THREADS;
-        CHECK(F.set_integer(comp, &vr, 1, &c->threads), fmi2OK);
+        CHECK(set_integer(comp, &vr, 1, &c->threads), fmi2OK);
     }
     if (c->scheme) {
         vr = VR_SCHEME;
-        CHECK(F.set_integer(comp, &vr, 1, &c->scheme), fmi2OK);
+        CHECK(set_integer(comp, &vr, 1, &c->scheme), fmi2OK);
     }
     fmi2ValueReference in_vr[] = {VR_CX, VR_V, VR_FN, VR_TBULK};
     fmi2Real in[] = {c->cx_from, c->v, c->fn, 20.0};
-    CHECK(F.set_real(comp, in_vr, 4, in), fmi2OK);
-    CHECK(F.setup(comp, 0, 0.0, 0.0, 0, 0.0), fmi2OK);
-    CHECK(F.enter_init(comp), fmi2OK);
+    CHECK(set_real(comp, in_vr, 4, in), fmi2OK);
+    CHECK(enter_init(comp), fmi2OK);
     CHECK(F.exit_init(comp), fmi2OK);
     return comp;
 }
 
-static void outputs(fmi2Component comp, fmi2Real *y) { CHECK(F.get_real(comp, OUT_VR, N_OUT, y), fmi2OK); }
+static void outputs(fmi2Component comp, fmi2Real *y) { CHECK(get_real(comp, OUT_VR, N_OUT, y), fmi2OK); }
 
 static void print_outputs(const char *label, int step, double t, fmi2Component comp) {
     fmi2Real y[N_OUT];
@@ -234,8 +379,8 @@ static void print_outputs(const char *label, int step, double t, fmi2Component c
 static void advance(const Case *c, fmi2Component comp, double *t, int from, int n, const char *label, int print) {
     fmi2ValueReference vr = VR_CX;
     for (int k = from; k < from + n; k++) {
-        CHECK(F.set_real(comp, &vr, 1, &c->cx_to), fmi2OK);
-        CHECK(F.do_step(comp, k * c->dt, c->dt, 1), fmi2OK);
+        CHECK(set_real(comp, &vr, 1, &c->cx_to), fmi2OK);
+        CHECK(do_step(comp, k * c->dt, c->dt), fmi2OK);
         *t = (k + 1) * c->dt;
         if (print && ((k + 1) % c->print_every == 0 || k + 1 == from + n)) print_outputs(label, k + 1, *t, comp);
     }
@@ -248,6 +393,7 @@ static void scenario(const Case *c, const char *res) {
     double t = 0.0;
     print_outputs(c->label, 0, t, comp);
     advance(c, comp, &t, 0, c->steps, c->label, 1);
+    print_field(c->label, comp);
     CHECK(F.terminate(comp), fmi2OK);
     F.free_instance(comp);
 }
@@ -296,15 +442,15 @@ static void state_round_trips(const char *res) {
 /* A bad input: the call returns fmi2Error and its message reaches the logger callback. */
 static void bad_inputs(const char *res) {
     Case c = {"bad", "dry", NULL, 0, 0, 5.0, 110e3, 0.0, 0.01, 1e-3, 1, 1};
-    fmi2Component comp = F.instantiate(c.label, fmi2CoSimulation, FMU_GUID, res, &CALLBACKS, 0, 0);
+    fmi2Component comp = instantiate(c.label, res);
     if (!comp) {
-        fprintf(stderr, "FAIL: fmi2Instantiate returned NULL\n");
+        fprintf(stderr, "FAIL: instantiation returned NULL\n");
         exit(1);
     }
     fmi2ValueReference vr = VR_PRESET;
     const char *bad = "no_such_preset";
     int before = n_logged_errors;
-    CHECK(F.set_string(comp, &vr, 1, &bad), fmi2Error);
+    CHECK(set_string(comp, &vr, 1, &bad), fmi2Error);
     printf("bad-input preset status-error logged %s mentions-value %s\n", n_logged_errors > before ? "yes" : "NO",
            strstr(last_error, "no_such_preset") ? "yes" : "NO");
     if (n_logged_errors == before || !strstr(last_error, "no_such_preset")) failures++;
@@ -314,7 +460,7 @@ static void bad_inputs(const char *res) {
     fmi2Real nan_v = strtod("nan", NULL);
     vr = VR_V;
     before = n_logged_errors;
-    CHECK(F.set_real(comp, &vr, 1, &nan_v), fmi2Error);
+    CHECK(set_real(comp, &vr, 1, &nan_v), fmi2Error);
     printf("bad-input v=NaN status-error logged %s names-v %s\n", n_logged_errors > before ? "yes" : "NO",
            strstr(last_error, "v = ") ? "yes" : "NO");
     if (n_logged_errors == before || !strstr(last_error, "v = ")) failures++;
@@ -371,7 +517,7 @@ static void save_load(const char *res, const char *file, int save) {
 
 int main(int argc, char **argv) {
     if (argc < 4) {
-        fprintf(stderr, "usage: %s LIBRARY FMU_GUID run|save|load RESOURCE_URI [STATE_FILE]\n", argv[0]);
+        fprintf(stderr, "usage: %s LIBRARY FMU_GUID_OR_TOKEN run|save|load RESOURCE_URI_OR_PATH [STATE_FILE]\n", argv[0]);
         return 2;
     }
 #ifdef _WIN32
@@ -382,7 +528,7 @@ int main(int argc, char **argv) {
     FMU_GUID = argv[2];
     const char *mode = argv[3];
     const char *res = argc > 4 ? argv[4] : NULL;
-    printf("fmi2GetVersion %s\n", F.version());
+    printf("GetVersion %s\n", F.version());
     if (strcmp(mode, "run") == 0) {
         static const Case cases[] = {
             /* label, preset, config_file, threads, scheme, v [m/s], F_N [N], c_x before, c_x after, step [s], steps, print every */

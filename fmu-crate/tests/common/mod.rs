@@ -274,3 +274,26 @@ pub fn default_scheme(cfg: &creep_core::Config, v: f64) -> creep_core::engine::S
         .expect("choice")
         .scheme
 }
+
+/// The XML as fmi-schema 0.8 reads it (the file itself follows the standard's schema): its
+/// FMI 3.0 BaseUnit takes the exponents of kelvin and ampere as `k` and `a`, where
+/// fmi3Unit.xsd (and fmpy) name them `K` and `A`, and its Float64 variables refuse the
+/// attribute `unit` of fmi3RealBaseAttributes. The units are checked on the text.
+pub fn for_fmi_schema(xml: &str) -> String {
+    let mut out = String::with_capacity(xml.len());
+    for line in xml.replace(" K=\"", " k=\"").lines() {
+        let l = match (
+            line.trim_start().starts_with("<Float64 "),
+            line.find(" unit=\""),
+        ) {
+            (true, Some(a)) => {
+                let b = a + 7 + line[a + 7..].find('"').unwrap_or(0) + 1;
+                format!("{}{}", &line[..a], &line[b..])
+            }
+            _ => line.to_string(),
+        };
+        out.push_str(&l);
+        out.push('\n');
+    }
+    out
+}
