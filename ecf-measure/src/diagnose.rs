@@ -512,8 +512,7 @@ fn run(
     let at_noise = times_noise.map(|t| t <= AT_NOISE);
     let mut verdict =
         verdict + &noise_words(noise.as_ref(), times_noise, &best_model, best_heldout);
-    // no catalogue effect comes close to the noise: search formula forms
-    // the search runs at the noise too: the estimate of a 150-row file is off the true noise
+    // the search of formula forms runs at the noise too: the estimate of a 150-row file is off the true noise
     // by up to 20-30 % either way, and a curve bent by the missing effect itself reads as
     // noise; its proposal rule, a held-out gain against the noise, decides
     let search = if cfg.model != ModelKind::Polach && search_seconds > 0.0 {
