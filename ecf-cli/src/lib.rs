@@ -286,7 +286,7 @@ pub fn main() -> ExitCode {
 pub(crate) enum TemperatureSolveArg {
     /// The implicit solve to its tolerance (the reference)
     Exact,
-    /// The predictor-corrector: two evaluations of the law per move
+    /// The predictor-corrector: two or three evaluations of the law per move
     Predictor,
 }
 

@@ -99,9 +99,9 @@ pub(crate) struct ModelArgs {
     #[arg(long, value_parser = parse_tol)]
     tol: Option<f64>,
     /// How the local temperature of each bristle move is solved: exact (the implicit solve
-    /// to its tolerance, the reference) or predictor (a predictor-corrector in two
-    /// evaluations of the material law, within 0.02 % of exact on the accuracy benchmark;
-    /// docs/model.md section 9). Default: the configuration's
+    /// to its tolerance, the reference) or predictor (a predictor-corrector in two or three
+    /// evaluations of the material law, within 0.025 % of exact on the accuracy benchmark;
+    /// docs/model.md section 6). Default: the configuration's (exact)
     #[arg(long, value_enum)]
     temperature_solve: Option<crate::TemperatureSolveArg>,
     /// Lateral creepage, dimensionless
