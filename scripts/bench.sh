@@ -11,6 +11,8 @@
 # (docs/model.md section 10); it prints them with their limits, measures again (at most three
 # times, the lowest counts) while one is over, and exits non-zero when one stays over.
 # Instruction counts of the same cases: scripts/callgrind.sh.
+#   bash scripts/bench.sh temperature-solve [--quick] [predictor] [REPS]   the predictor-corrector
+#       local temperature against the exact solve (differences and cost ratio; about 1-3 minutes)
 #   bash scripts/bench.sh --only steady|transient|diagnose
 #   bash scripts/bench.sh --only threads   transient on all cores vs one (not pinned)
 #   bash scripts/bench.sh --only accuracy [--finest 640]   errors of each grid and scheme against

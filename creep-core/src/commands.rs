@@ -84,6 +84,8 @@ pub struct ModelSetup {
     /// Relative tolerance on F_x (a fraction) that chooses grid and scheme from the accuracy
     /// table (ECF only); None: off.
     pub tol: Option<f64>,
+    /// How the local temperature of a bristle move is solved; None: the configuration's.
+    pub temperature_solve: Option<crate::thermal::TemperatureSolve>,
     /// Lateral creepage, dimensionless (default 0).
     pub cy: f64,
     /// Spin creepage, 1/m (default 0).
@@ -109,6 +111,7 @@ impl Default for ModelSetup {
             b_mm: None,
             grid: None,
             tol: None,
+            temperature_solve: None,
             cy: 0.0,
             spin: 0.0,
             t_bulk_c: 20.0,
@@ -251,6 +254,9 @@ impl ModelSetup {
         }
         if let Some(g) = &self.grid {
             cfg.grid = Grid::parse(g)?;
+        }
+        if let Some(s) = self.temperature_solve {
+            cfg.temperature_solve = s;
         }
         self.check_operating_point(&mut cfg)?;
         Ok(cfg)

@@ -129,6 +129,14 @@ impl Model {
         }
     }
 
+    /// How the local temperature of a bristle move is solved (see
+    /// [`crate::thermal::TemperatureSolve`]; Polach has none).
+    pub fn set_temperature_solve(&mut self, solve: crate::thermal::TemperatureSolve) {
+        if let Model::Bristle(c) = self {
+            c.set_temperature_solve(solve);
+        }
+    }
+
     /// How a step advances the bristles now (None for Polach, which has none).
     pub fn scheme(&self) -> Option<crate::scheme::Scheme> {
         match self {

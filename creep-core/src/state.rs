@@ -42,11 +42,13 @@ fn same_config(saved: &str, now: &str) -> Result<bool> {
     ) else {
         return Ok(false);
     };
-    // the scheme says how to compute, not what: a state loads into a model of another scheme
-    // (and states saved before the configuration had one have none)
+    // the scheme and the temperature solve say how to compute, not what: a state loads into
+    // a model of another scheme or solve (and states saved before the configuration had one
+    // have none)
     for c in [&mut a, &mut b] {
         if let Some(o) = c.as_object_mut() {
             o.remove("scheme");
+            o.remove("temperature_solve");
         }
     }
     let Some(ps) = a.get_mut("params").and_then(Value::as_object_mut) else {

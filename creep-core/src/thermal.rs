@@ -16,6 +16,9 @@
 use std::f64::consts::PI;
 use wide::f64x2;
 
+mod predictor;
+pub use predictor::{pc_miss, solve_predictor_corrector, TemperatureSolve, PC_MISS_REL};
+
 /// Smallest decay rate of the kernel, 1/s.
 pub const S_MIN: f64 = 1e-3;
 /// Spacing of the rates in ln(s).

@@ -62,7 +62,7 @@ pub(crate) const A: f64 = 7.63e-3;
 const B: f64 = 7.88e-3;
 
 impl Case {
-    fn name(&self) -> String {
+    pub(crate) fn name(&self) -> String {
         match self.kind {
             Kind::Step { from, to } => format!(
                 "{} step {}->{} % at {} m/s, {} ms steps",
@@ -92,7 +92,7 @@ impl Case {
         }
     }
 
-    fn steps(&self) -> usize {
+    pub(crate) fn steps(&self) -> usize {
         let dur = match self.kind {
             Kind::Step { .. } => 6.0 * 2.0 * A / self.v,
             Kind::Sine { f_hz, .. } => 1.25 / f_hz,
@@ -100,7 +100,7 @@ impl Case {
         ((dur / self.dt).round() as usize).max(10)
     }
 
-    fn cx(&self, k: usize) -> f64 {
+    pub(crate) fn cx(&self, k: usize) -> f64 {
         match self.kind {
             Kind::Step { from, to } => {
                 if k == 0 {

@@ -7,7 +7,8 @@
 //! creepages; `cells-ho`: a transient step of table4.1 at 20 m/s from c_x 0.2 % to 5 %, 50
 //! steps of 0.1 ms under the higher-order rules (`ecf step --preset table4.1 --v-mps 20
 //! --cx-from 0.002 --cx-to 0.05 --dt-ms 0.1 --grid 20x3 --scheme cells-ho`), `REPS` times.
-//! Defaults: grid 40x21 (cells-ho: 20x3), REPS 1.
+//! Defaults: grid 40x21 (cells-ho: 20x3), REPS 1. `--temperature-solve exact|predictor`
+//! anywhere: the local temperature's solve of the ECF cases (default: exact, the reference).
 use creep_core::engine::Scheme;
 use creep_core::{Config, Grid, Inputs, Model};
 use ecf_bench::Contact;
@@ -40,7 +41,16 @@ fn model(preset: &str, nx: usize, ny: usize) -> Result<Model, String> {
 
 /// `ecf-bench count CASE [NXxNY] [REPS]`; prints the case and a checksum of its outputs.
 pub fn run(args: &[String]) -> Result<(), String> {
-    let usage = "usage: ecf-bench count fastsim|dry|table4.1|wet|c|cells-ho [NXxNY] [REPS]";
+    let usage = "usage: ecf-bench count fastsim|dry|table4.1|wet|c|cells-ho [NXxNY] [REPS] [--temperature-solve exact|predictor]";
+    // --temperature-solve NAME anywhere: the local temperature's solve (default exact)
+    let mut args = args.to_vec();
+    let mut solve = creep_core::thermal::TemperatureSolve::Exact;
+    if let Some(p) = args.iter().position(|a| a == "--temperature-solve") {
+        let name = args.get(p + 1).ok_or(usage)?.clone();
+        solve = creep_core::thermal::TemperatureSolve::by_name(&name)
+            .ok_or_else(|| format!("'{name}' is not a temperature solve"))?;
+        args.drain(p..p + 2);
+    }
     let case = args.first().ok_or(usage)?.as_str();
     let (nx, ny) = match args.get(1) {
         Some(g) => g
@@ -76,6 +86,7 @@ pub fn run(args: &[String]) -> Result<(), String> {
         }
         "fastsim" | "dry" | "table4.1" | "wet" => {
             let mut m = model(case, nx, ny)?;
+            m.set_temperature_solve(solve);
             warm_then_measure(
                 &mut || {
                     CX.iter()
@@ -88,6 +99,7 @@ pub fn run(args: &[String]) -> Result<(), String> {
         "cells-ho" => {
             let mut m = model("table4.1", nx, ny)?;
             m.set_scheme(Scheme::CellsHigher);
+            m.set_temperature_solve(solve);
             warm_then_measure(
                 &mut || {
                     let mut fx = m.steady(&steady(0.002)).map_or(f64::NAN, |o| o.fx);

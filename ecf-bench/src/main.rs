@@ -1,11 +1,16 @@
 //! `ecf-bench`: cost of the ECF engine against a plain C FASTSIM, transient real-time factors and `ecf diagnose`, measured interleaved in one process (medians).
 //!
 //! Usage: ecf-bench [--quick] [--only steady|transient|diagnose|threads|accuracy|consistency|steady-grid] [--finest 320|640]
-//!        ecf-bench count CASE [NXxNY] [REPS]   (a probe for callgrind, module `count`)
+//!        ecf-bench count CASE [NXxNY] [REPS] [--temperature-solve NAME]
+//!                                             (a probe for callgrind, module `count`)
+//!        ecf-bench temperature-solve [--quick] [NAME] [REPS]
+//!                                             (a cheaper local temperature solve against the
+//!                                             exact one, module `temperature_solve`)
 mod accuracy;
 mod consistency;
 mod count;
 mod steady_grid;
+mod temperature_solve;
 
 use creep_core::engine::Scheme;
 use creep_core::{Config, Grid, Inputs, Model};
@@ -459,6 +464,10 @@ fn main() {
         }
         return;
     }
+    if args.first().map(String::as_str) == Some("temperature-solve") {
+        temperature_solve_cmd(&args[1..]);
+        return;
+    }
     let quick = args.iter().any(|a| a == "--quick");
     let only = args
         .iter()
@@ -541,5 +550,41 @@ fn main() {
     // on request only: every other table runs pinned to one core
     if only.as_deref() == Some("threads") {
         threads_table(quick);
+    }
+}
+
+/// `ecf-bench temperature-solve [--quick] [NAME] [REPS]`: the cheaper temperature solve
+/// `NAME` (default `predictor`) against the exact one (module `temperature_solve`), `REPS`
+/// interleaved pairs per cell for the costs (default 3); exits 1 when a difference is over
+/// its limit.
+fn temperature_solve_cmd(args: &[String]) {
+    use creep_core::thermal::TemperatureSolve;
+    let quick = args.iter().any(|a| a == "--quick");
+    let rest: Vec<&String> = args.iter().filter(|a| *a != "--quick").collect();
+    let solve = match rest.first() {
+        None => TemperatureSolve::PredictorCorrector,
+        Some(n) => TemperatureSolve::by_name(n).unwrap_or_else(|| {
+            eprintln!(
+                "ecf-bench temperature-solve: '{n}' is not a temperature solve (expected {})",
+                TemperatureSolve::NAMES
+            );
+            std::process::exit(2);
+        }),
+    };
+    let reps = match rest.get(1) {
+        None => 3,
+        Some(r) => r.parse().unwrap_or_else(|_| {
+            eprintln!("ecf-bench temperature-solve: bad REPS '{r}'");
+            std::process::exit(2);
+        }),
+    };
+    let worst = temperature_solve::table(solve, quick, reps);
+    if worst
+        .iter()
+        .zip(temperature_solve::LIMITS)
+        .any(|(w, l)| *w > l)
+    {
+        eprintln!("ecf-bench temperature-solve: a difference is over its limit");
+        std::process::exit(1);
     }
 }

@@ -279,3 +279,25 @@ pub fn main() -> ExitCode {
         }
     }
 }
+
+/// How the local temperature of a bristle move is solved
+/// (`creep_core::thermal::TemperatureSolve`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum TemperatureSolveArg {
+    /// The implicit solve to its tolerance (the reference)
+    Exact,
+    /// The predictor-corrector: two or three evaluations of the law per move
+    Predictor,
+}
+
+impl TemperatureSolveArg {
+    /// The engine's solve of the flag's value.
+    pub(crate) fn solve(self) -> creep_core::thermal::TemperatureSolve {
+        match self {
+            TemperatureSolveArg::Exact => creep_core::thermal::TemperatureSolve::Exact,
+            TemperatureSolveArg::Predictor => {
+                creep_core::thermal::TemperatureSolve::PredictorCorrector
+            }
+        }
+    }
+}

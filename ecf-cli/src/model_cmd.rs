@@ -98,6 +98,12 @@ pub(crate) struct ModelArgs {
     /// grid)
     #[arg(long, value_parser = parse_tol)]
     tol: Option<f64>,
+    /// How the local temperature of each bristle move is solved: exact (the implicit solve
+    /// to its tolerance, the reference) or predictor (a predictor-corrector in two or three
+    /// evaluations of the material law, within 0.025 % of exact on the accuracy benchmark;
+    /// docs/model.md section 6). Default: the configuration's (exact)
+    #[arg(long, value_enum)]
+    temperature_solve: Option<crate::TemperatureSolveArg>,
     /// Lateral creepage, dimensionless
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     cy: f64,
@@ -408,6 +414,9 @@ impl ModelArgs {
             b_mm: self.b_mm,
             grid: self.grid.clone(),
             tol: self.tol,
+            temperature_solve: self
+                .temperature_solve
+                .map(crate::TemperatureSolveArg::solve),
             cy: self.cy,
             spin: self.spin,
             t_bulk_c: self.t_bulk_c,

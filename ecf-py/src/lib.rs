@@ -104,6 +104,7 @@ impl SetupArgs {
             b_mm: self.b_mm,
             grid: self.grid,
             tol: self.tol,
+            temperature_solve: None,
             cy: self.cy,
             spin: self.spin,
             t_bulk_c: self.t_bulk_c,

@@ -5,6 +5,7 @@ use crate::vars::{Geo, In, Slot, Start, Value, Var, N_AUX, N_GEO, N_INPUTS};
 use creep_core::effects::Effect;
 use creep_core::params::{self, P};
 use creep_core::scheme::Scheme;
+use creep_core::thermal::TemperatureSolve;
 use creep_core::{Config, Geometry, Grid, ModelKind, Modifier};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -213,6 +214,10 @@ pub struct Settings {
     /// configuration's `scheme` (its model's default, `cells-ho` for ECF, unless the
     /// configuration file names another).
     pub scheme: Option<i32>,
+    /// How the local temperature of a bristle move is solved, if set: 1 exact, 2 the
+    /// predictor-corrector ([`temperature_solve_code`]). None (the start value 0): the
+    /// configuration's `temperature_solve`.
+    pub temperature_solve: Option<i32>,
     /// Relative tolerance on F_x that chooses the grid and scheme at initialization
     /// (fraction; 0 = off), if set to a value other than its start value
     /// [`DEFAULT_REL_TOL`]; see [`Settings::rel_tol`].
@@ -247,7 +252,24 @@ pub fn scheme_of_code(c: i32) -> Scheme {
     Scheme::by_fmu_code(c).unwrap_or(Scheme::CellsMarch)
 }
 
+/// The code of the parameter `temperature_solve` for a solve: 1 exact, 2 the
+/// predictor-corrector. 0, the start value, is "not set".
+pub fn temperature_solve_code(s: TemperatureSolve) -> i32 {
+    match s {
+        TemperatureSolve::Exact => 1,
+        TemperatureSolve::PredictorCorrector => 2,
+    }
+}
+
 impl Settings {
+    /// The temperature solve of the parameter `temperature_solve`, if set (None: the
+    /// configuration's).
+    pub fn temperature_solve(&self) -> Option<TemperatureSolve> {
+        TemperatureSolve::ALL
+            .into_iter()
+            .find(|s| Some(temperature_solve_code(*s)) == self.temperature_solve)
+    }
+
     /// The tolerance in force: the value set; at the start value, [`DEFAULT_REL_TOL`] unless
     /// the grid is given, by both `nx` and `ny` or by the configuration file's `grid` (an
     /// explicit grid is the user's: the default tolerance does not apply, so neither the
@@ -335,7 +357,12 @@ impl Settings {
                 }
             }
             (
-                Slot::GeometryMode | Slot::Nx | Slot::Ny | Slot::Threads | Slot::Scheme,
+                Slot::GeometryMode
+                | Slot::Nx
+                | Slot::Ny
+                | Slot::Threads
+                | Slot::Scheme
+                | Slot::TemperatureSolve,
                 Value::Integer(x),
             ) => {
                 let (lo, hi) = (v.min.unwrap_or(0.0) as i32, v.max.unwrap_or(1e9) as i32);
@@ -400,6 +427,9 @@ impl Settings {
             (Slot::Nx, Value::Integer(x)) => self.nx = (*x > 0).then_some(*x as usize),
             (Slot::Ny, Value::Integer(x)) => self.ny = (*x > 0).then_some(*x as usize),
             (Slot::Threads, Value::Integer(x)) => self.threads = (*x).max(1) as usize,
+            (Slot::TemperatureSolve, Value::Integer(x)) => {
+                self.temperature_solve = (*x != 0).then_some(*x)
+            }
             (Slot::Scheme, Value::Integer(x)) => {
                 self.scheme = (v.start != Start::Integer(*x)).then_some(*x)
             }
@@ -447,6 +477,13 @@ impl Settings {
             }),
             Slot::GeometryMode => Value::Integer(self.geometry),
             Slot::Threads => Value::Integer(self.threads.max(1) as i32),
+            Slot::TemperatureSolve => Value::Integer(match self.temperature_solve {
+                Some(x) => x,
+                None => match cfg() {
+                    Ok(c) => temperature_solve_code(c.temperature_solve),
+                    Err(e) => return Some(Err(e)),
+                },
+            }),
             Slot::Scheme => Value::Integer(match self.scheme {
                 Some(x) => x,
                 None => match cfg() {

@@ -233,6 +233,8 @@ fn get_config(r: &mut R, version: u32) -> Result<Config, String> {
         bound,
         grid,
         scheme,
+        // not stored: how to compute, the restoring instance's own choice applies
+        temperature_solve: Default::default(),
         geometry,
         modifiers,
     })

@@ -340,6 +340,9 @@ pub enum Slot {
     Scheme,
     /// Relative tolerance on F_x that chooses the grid and scheme (0: off).
     RelTol,
+    /// How the local temperature of a bristle move is solved (0 the configuration's, 1
+    /// exact, 2 predictor-corrector).
+    TemperatureSolve,
     /// An effect switch.
     Effect(Effect),
     /// Model family name.
@@ -551,6 +554,7 @@ pub fn default_config() -> Config {
         bound: creep_core::Bound::Elliptic,
         grid: creep_core::config::DEFAULT_GRID,
         scheme: creep_core::ModelKind::Ecf.default_scheme(),
+        temperature_solve: Default::default(),
         geometry: DEFAULT_GEOMETRY,
         modifiers: Vec::new(),
     })
@@ -722,7 +726,24 @@ pub fn table() -> Vec<Var> {
         max: Some(1.0),
         slot: Slot::RelTol,
     });
+    v.push(temperature_solve_var());
     v
+}
+
+/// The parameter `temperature_solve` (added after `rel_tol`, so that no earlier index moves).
+fn temperature_solve_var() -> Var {
+    Var {
+    name: "temperature_solve".into(),
+    vr: 46,
+    kind: Kind::Integer,
+    causality: Causality::Parameter,
+    unit: None,
+    description: "how the local temperature of each bristle move (seed Eq. 4.35) is solved (the start value 0 means 'not set': a configuration file's `temperature_solve`, else exact): 1 exact, the implicit solve to 1e-10 relative change of the softening factors (the reference); 2 the predictor-corrector, two or three evaluations of the material law per move, within 0.025 % of 1 in F_x, P_fric and the T_max rise on the accuracy benchmark (docs/model.md section 6). A setting of the instance like threads: a restored state keeps it".into(),
+    start: Start::Integer(0),
+    min: Some(0.0),
+    max: Some(2.0),
+    slot: Slot::TemperatureSolve,
+}
 }
 
 #[cfg(test)]

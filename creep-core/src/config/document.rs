@@ -30,6 +30,8 @@ struct RawConfig {
     #[serde(default)]
     scheme: Option<String>,
     #[serde(default)]
+    temperature_solve: Option<String>,
+    #[serde(default)]
     geometry: Option<Map<String, Value>>,
     #[serde(default)]
     formula_effects: Option<Vec<RawFormula>>,
@@ -246,6 +248,18 @@ impl Config {
                 )
             })?;
         }
+        if let Some(name) = &raw.temperature_solve {
+            cfg.temperature_solve =
+                crate::thermal::TemperatureSolve::by_name(name).ok_or_else(|| {
+                    cfg_err(
+                        src,
+                        format!(
+                            "temperature_solve: '{name}' is not a temperature solve (expected {})",
+                            crate::thermal::TemperatureSolve::NAMES
+                        ),
+                    )
+                })?;
+        }
         if let Some(g) = &raw.geometry {
             cfg.geometry = parse_geometry(src, g)?;
         }
@@ -291,6 +305,7 @@ impl Config {
                     bound: Bound::Elliptic,
                     grid: DEFAULT_GRID,
                     scheme: model.default_scheme(),
+                    temperature_solve: crate::thermal::TemperatureSolve::default(),
                     geometry: DEFAULT_GEOMETRY,
                     modifiers: Vec::new(),
                 }
@@ -520,6 +535,11 @@ impl Config {
             "scheme": self.scheme.name(),
             "geometry": geometry,
         });
+        // written where it is not the default, so that documents and saved states of the
+        // default are as before the key existed
+        if self.temperature_solve != crate::thermal::TemperatureSolve::default() {
+            v["temperature_solve"] = Value::String(self.temperature_solve.name().into());
+        }
         if self.preset != "custom" {
             // provenance; every value is given explicitly as well
             v["preset"] = Value::String(self.preset.clone());

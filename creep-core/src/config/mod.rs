@@ -180,6 +180,13 @@ pub struct Config {
     /// [`Model::set_scheme`](crate::Model::set_scheme) changes it for a model, and a saved
     /// state loads into a model of another scheme.
     pub scheme: Scheme,
+    /// How the local temperature of a bristle move (Eq. 4.35) is solved (configuration key
+    /// `temperature_solve`: `exact`, the implicit solve to its tolerance, or `predictor`, the
+    /// predictor-corrector of [`crate::thermal::solve_predictor_corrector`]; default
+    /// [`crate::thermal::TemperatureSolve::default`]). How to compute, not what, as `scheme`:
+    /// [`Model::set_temperature_solve`](crate::Model::set_temperature_solve) changes it for a
+    /// model.
+    pub temperature_solve: crate::thermal::TemperatureSolve,
     /// Contact geometry.
     pub geometry: Geometry,
     /// Modifiers of the material law (module [`crate::modifier`]): formula effects
@@ -385,6 +392,38 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("heat") && e.contains("temperature"), "{e}");
+    }
+
+    #[test]
+    fn a_configuration_names_its_temperature_solve() {
+        use crate::thermal::TemperatureSolve;
+        let c = Config::preset("dry").unwrap();
+        assert_eq!(c.temperature_solve, TemperatureSolve::default());
+        // the default is not written (documents and saved states as before the key)
+        assert!(c.to_json().get("temperature_solve").is_none());
+        for s in TemperatureSolve::ALL {
+            let json = format!(
+                r#"{{"preset": "dry", "temperature_solve": "{}"}}"#,
+                s.name()
+            );
+            let c = Config::from_json_str(&json, "x.json").unwrap();
+            assert_eq!(c.temperature_solve, s);
+            assert_eq!(
+                c.to_json().get("temperature_solve").is_some(),
+                s != TemperatureSolve::default()
+            );
+            assert_eq!(
+                Config::from_json_str(&c.to_json().to_string(), "y").unwrap(),
+                c
+            );
+        }
+        let e = Config::from_json_str(r#"{"preset": "dry", "temperature_solve": "pc"}"#, "x.json")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("temperature_solve: 'pc'") && e.contains("predictor"),
+            "{e}"
+        );
     }
 
     #[test]

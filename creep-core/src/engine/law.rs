@@ -21,6 +21,11 @@ pub(super) struct Law {
     /// Temperature tolerance of the local solve, K ([`thermal::temperature_tolerance`] of the
     /// largest temperature coefficient).
     pub t_tol: f64,
+    /// How the local temperature of a move is solved ([`thermal::TemperatureSolve`]).
+    pub t_solve: thermal::TemperatureSolve,
+    /// The predictor's miss (K) above which the predictor-corrector takes a third
+    /// evaluation ([`thermal::pc_miss`] of the largest temperature coefficient).
+    pub pc_miss: f64,
     /// The configuration's formula and Rust effects at the current operating point.
     pub modifiers: Modifiers,
     /// How a step advances the bristles (see [`Scheme`]).
@@ -49,6 +54,8 @@ impl Law {
             r,
             kernel: Kernel::default(),
             t_tol: thermal::temperature_tolerance(cmax),
+            t_solve: cfg.temperature_solve,
+            pc_miss: thermal::pc_miss(cmax),
             modifiers: Modifiers::new(&cfg.modifiers),
             scheme: cfg.scheme,
             ho: false,

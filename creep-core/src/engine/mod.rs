@@ -528,6 +528,17 @@ impl Contact {
         self.law.scheme
     }
 
+    /// Sets how the local temperature of a bristle move is solved (the configuration's
+    /// `temperature_solve` at construction).
+    pub fn set_temperature_solve(&mut self, solve: thermal::TemperatureSolve) {
+        self.law.t_solve = solve;
+    }
+
+    /// How the local temperature of a bristle move is solved.
+    pub fn temperature_solve(&self) -> thermal::TemperatureSolve {
+        self.law.t_solve
+    }
+
     /// Grid size (nx, ny actually used; a line contact has one strip).
     pub fn grid_size(&self) -> (usize, usize) {
         (self.lat.nx, self.lat.ny)

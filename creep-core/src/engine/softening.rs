@@ -22,7 +22,7 @@ use super::law::Mover;
 use crate::bristle::{BristleState, Material, Move, Regime, Rule, SofteningPath};
 use crate::fastexp::{exp_fast, exp_pair};
 use crate::material::NodeP;
-use crate::thermal::{self, StepFactors, N_KERNEL};
+use crate::thermal::{self, StepFactors, TemperatureSolve, N_KERNEL};
 
 impl Mover<'_> {
     /// [`Mover::update_bristle`] on the scalar path (see the module): advances one bristle
@@ -153,7 +153,16 @@ impl Mover<'_> {
             SofteningPath::Elastic => self.elastic_on_path(pm)?,
             SofteningPath::Hardening { t0, dn, dir } => self.hardening_on_path(pm, t0, dn, dir)?,
         };
-        if (pm.t_hist + pm.self_c * q - t).abs() >= self.law.t_tol {
+        // the predictor-corrector's root is within the square of the predictor's miss: its
+        // residual is bounded relative to the move's flash rise instead (a failed search
+        // stays far outside either)
+        let tol = match self.law.t_solve {
+            TemperatureSolve::Exact => self.law.t_tol,
+            TemperatureSolve::PredictorCorrector => {
+                self.law.t_tol.max(PC_RESIDUAL * (t - pm.t_hist))
+            }
+        };
+        if (pm.t_hist + pm.self_c * q - t).abs() >= tol {
             return None;
         }
         let ns = BristleState {
@@ -187,10 +196,23 @@ impl Mover<'_> {
     /// regime, q, T).
     fn hardening_on_path(&self, pm: &PathMove, t0: f64, dn: f64, dir: [f64; 2]) -> Option<OnPath> {
         let law = HardeningLaw::new(self, pm.m_h, t0, dn, pm.start);
-        let (t_h, dt_h) = law.at_hist();
-        pm.t_h.set(t_h);
-        let coef = pm.heat_along(dir, t_h);
-        let (root, sliding, t) = self.hardening_root(pm, &law, coef, (t_h, dt_h))?;
+        // the predictor-corrector where the release is not damped (theta = 1): neither the
+        // release reference, the law's stress at t_hist, nor the exact search is needed
+        let pc = (self.law.t_solve == TemperatureSolve::PredictorCorrector
+            && pm.theta == 1.0
+            && pm.old.q > 0.0)
+            .then(|| predictor_corrector_root(pm, &law, pm.heat_along(dir, 0.0), self.law.pc_miss))
+            .flatten();
+        let (root, sliding, t, t_h) = match pc {
+            Some((root, sliding, t)) => (root, sliding, t, None),
+            None => {
+                let (t_h, dt_h) = law.at_hist();
+                pm.t_h.set(t_h);
+                let coef = pm.heat_along(dir, t_h);
+                let (root, sliding, t) = self.hardening_root(pm, &law, coef, (t_h, dt_h))?;
+                (root, sliding, t, Some(t_h))
+            }
+        };
         // the span closes at one temperature and stays closed above it: open at the
         // root means open on the whole path from t_hist
         if self.law.r.span_may_close() && self.span_closed(pm.np, root) {
@@ -198,11 +220,16 @@ impl Mover<'_> {
         }
         let theta = pm.theta;
         let tau = [t * dir[0], t * dir[1]];
-        let r = [t_h * dir[0], t_h * dir[1]];
-        let tau_r = [
-            r[0] + theta * (tau[0] - r[0]),
-            r[1] + theta * (tau[1] - r[1]),
-        ];
+        let tau_r = match t_h {
+            Some(t_h) => {
+                let r = [t_h * dir[0], t_h * dir[1]];
+                [
+                    r[0] + theta * (tau[0] - r[0]),
+                    r[1] + theta * (tau[1] - r[1]),
+                ]
+            }
+            None => tau,
+        };
         let regime = if sliding {
             Regime::Sliding
         } else {
@@ -289,6 +316,83 @@ impl Mover<'_> {
             Some((root, sl, t))
         }
     }
+}
+
+/// The largest residual of a predictor-corrector root on the scalar path, relative to the
+/// move's flash rise T - t_hist.
+const PC_RESIDUAL: f64 = 1e-3;
+
+/// The predictor-corrector ([`TemperatureSolve::PredictorCorrector`]) on the scalar path: the
+/// root of t_hist + self_c q(T) = T for the heat q = a t - b t^2 + c (`coef`) of the law's
+/// stress t(T), from the predictor t_hist + self_c q_pred (q_pred: the heat rate of the start
+/// stress over the move's slip, as the general move's
+/// [`Contact::predicted_heat`](super::Contact)). With the law's derivative, one evaluation
+/// and a Newton step, the stress extrapolated to the root; without it (the higher-order
+/// hardening law), the two evaluations of [`thermal::solve_predictor_corrector`]. Returns (T,
+/// sliding, t at T), None where the exact search must run: no heat at a trial, heat that rises
+/// with T, a bristle near the onset of sliding (t0 = tau_c2) or one that crosses it between
+/// the trials or on the last step.
+fn predictor_corrector_root(
+    pm: &PathMove,
+    law: &HardeningLaw,
+    (a, b, c): (f64, f64, f64),
+    miss: f64,
+) -> Option<(f64, bool, f64)> {
+    let (t_hist, self_c) = (pm.t_hist, pm.self_c);
+    let heat = |t: f64| (a * t - b * t * t + c).max(0.0);
+    let du = pm.mv.du();
+    let q_start = (pm.kq_h * (pm.old.tau[0] * du[0] + pm.old.tau[1] * du[1])).max(0.0);
+    let q_pred = if q_start > 0.0 { q_start } else { pm.old.q };
+    let near_kink = |tc2: f64| (law.t0 - tc2).abs() <= 2e-4 * tc2;
+    if law.start.is_some() && law.t0 < law.m_h.tc2 {
+        // no derivative: the secants
+        let ((t, sl, _), q) = thermal::solve_predictor_corrector(
+            t_hist,
+            self_c,
+            q_pred,
+            miss,
+            |tk| {
+                let (t, _, sl, tc2) = law.stress(tk - t_hist);
+                ((t, sl, near_kink(tc2)), heat(t))
+            },
+            |x: &(f64, bool, bool), y: &(f64, bool, bool), w| {
+                (x.1 == y.1).then_some((x.0 + w * (y.0 - x.0), x.1, false))
+            },
+            // a trial near the kink is refused
+            |x| !x.2,
+        )?;
+        return Some((t_hist + self_c * q, sl, t));
+    }
+    // Newton from the predictor: g'(T) = self_c dq/dT - 1, dq/dT = (a - 2 b t) dt/dT; the
+    // root and the stress extrapolated to it over the step
+    let newton = |tk: f64| {
+        let (t, dt, sl, tc2) = law.stress(tk - t_hist);
+        let q = heat(t);
+        let dq = (a - 2.0 * b * t) * dt;
+        if !(q > 0.0 && dq <= 0.0) || near_kink(tc2) {
+            return None;
+        }
+        let g = t_hist + self_c * q - tk;
+        let root = tk + g / (1.0 - self_c * dq);
+        // the branch at the root: sliding while t0 >= tau_c2 (falling with T, linear over
+        // the step to well within the margin above)
+        if (law.t0 >= tc2 * (1.0 - law.c2 * (root - tk))) != sl {
+            return None;
+        }
+        Some((root, sl, t + dt * (root - tk), g))
+    };
+    let (root, sl, t, g0) = newton(t_hist + self_c * q_pred)?;
+    // a second step where the predictor missed by more than `miss`, blended in between one
+    // and two misses (as thermal::solve_predictor_corrector)
+    let beta = (g0.abs() / miss - 1.0).clamp(0.0, 1.0);
+    if beta == 0.0 {
+        return Some((root, sl, t));
+    }
+    let (root2, sl2, t2, _) = newton(root)?;
+    if sl2 != sl {
+        return None;
+    }
+    Some((root + beta * (root2 - root), sl, t + beta * (t2 - t)))
 }
 
 /// A move's stress, regime, heat density (W/m^2) and temperature (degC) on its path.

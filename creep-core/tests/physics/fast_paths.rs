@@ -122,6 +122,11 @@ fn each_effect_is_off_a_fast_path_or_agrees_with_the_general_path() {
             cfg.effects.insert(info.effect);
             let mut fast = Contact::new(&cfg).expect("contact");
             let mut general = Contact::new(&cfg).expect("contact");
+            // the exact temperature solve on both: the paths agree within its tolerance (the
+            // predictor-corrector's own agreement: tests/physics/temperature_solve.rs)
+            for c in [&mut fast, &mut general] {
+                c.set_temperature_solve(creep_core::thermal::TemperatureSolve::Exact);
+            }
             // the other fast paths as the engine chooses them, on both contacts, except that
             // the scalar solve would return before the fixed L_e is used
             if path == FastPath::FixedLe {

@@ -22,6 +22,7 @@ mod state_and_inputs;
 mod state_fixtures;
 mod strength_bound;
 mod symmetry;
+mod temperature_solve;
 mod threads;
 mod three_regimes;
 mod transient_step;

@@ -1,10 +1,21 @@
 //! Outputs smooth in the inputs (docs/model.md section 6, "Tolerance of the temperature solve"): the temperature solve converges tightly enough that finite-difference derivatives do not see its tolerance.
 
+use creep_core::thermal::TemperatureSolve;
 use creep_core::{Config, Inputs, Model};
 
 /// F_x (N) after `steps` transient steps of 1 ms from the steady state, dry preset,
-/// v = 10 m/s, F_N = 110 kN, at longitudinal creepage `cx`.
+/// v = 10 m/s, F_N = 110 kN, at longitudinal creepage `cx`, with the configuration's
+/// temperature solve.
 fn fx_after(cx: f64, steps: usize) -> f64 {
+    fx_after_with(
+        cx,
+        steps,
+        Config::preset("dry").expect("preset").temperature_solve,
+    )
+}
+
+/// [`fx_after`] with the temperature solve `solve`.
+fn fx_after_with(cx: f64, steps: usize, solve: TemperatureSolve) -> f64 {
     let i = Inputs {
         cx,
         v: 10.0,
@@ -12,6 +23,7 @@ fn fx_after(cx: f64, steps: usize) -> f64 {
         ..Inputs::default()
     };
     let mut m = Model::new(&Config::preset("dry").expect("preset")).expect("model");
+    m.set_temperature_solve(solve);
     let mut fx = m.steady(&i).expect("steady").fx;
     for _ in 0..steps {
         fx = m.step(1e-3, &i).expect("step").fx;
@@ -79,4 +91,43 @@ fn fx_is_smooth_in_cx_along_the_curve() {
         worst.0,
         worst.1
     );
+}
+
+/// Both smoothness checks above under each temperature solve: the predictor-corrector takes
+/// a count of evaluations fixed by the predictor's miss (blended between two and three), not
+/// by a tolerance, so one ulp of c_x moves F_x by a rounding-sized amount and central
+/// differences with relative increments 1e-5 ... 1e-7 agree within 1e-3.
+#[test]
+fn fx_is_smooth_in_cx_under_each_temperature_solve() {
+    for solve in TemperatureSolve::ALL {
+        let (cx, steps) = (-0.005, 20);
+        let f = |x: f64| fx_after_with(x, steps, solve);
+        let f0 = f(cx);
+        let jump = (f(cx.next_up()) - f0).abs();
+        assert!(
+            jump < 1e-6,
+            "{solve:?}: F_x moved by {jump:e} N for one ulp of c_x"
+        );
+        let d: Vec<f64> = [1e-5, 1e-6, 1e-7]
+            .iter()
+            .map(|e| {
+                let h = cx.abs() * e;
+                (f(cx + h) - f(cx - h)) / (2.0 * h)
+            })
+            .collect();
+        for x in &d {
+            assert!(
+                ((x - d[1]) / d[1]).abs() < 1e-3,
+                "{solve:?}: dF_x/dc_x by increments 1e-5, 1e-6, 1e-7: {d:?} N"
+            );
+        }
+        for k in 0..12 {
+            let cx = -0.001 * 200f64.powf(k as f64 / 11.0);
+            let jump = (fx_after_with(cx.next_up(), 5, solve) - fx_after_with(cx, 5, solve)).abs();
+            assert!(
+                jump < 1e-6,
+                "{solve:?}: F_x moved by {jump:e} N for one ulp of c_x at c_x = {cx}"
+            );
+        }
+    }
 }

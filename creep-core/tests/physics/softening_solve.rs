@@ -1,6 +1,7 @@
 //! The scalar temperature solve of a softening layer (engine/softening.rs) against the general solve: the same states within the solve's tolerance, steady and transient.
 
 use super::common::{preset, with_grid};
+use creep_core::thermal::TemperatureSolve;
 use creep_core::{Config, Contact, Inputs, Outputs};
 
 /// Forces and moment within `rel` of the larger magnitude (plus 1 N, 1 N m), the
@@ -31,8 +32,13 @@ fn agree(what: &str, a: &Outputs, b: &Outputs, rel: f64) {
 /// Two contacts of `cfg`: (scalar solve, general solve). Asserts that the scalar solve
 /// applies to `cfg` (else the comparison would compare the general solve with itself).
 fn scalar_and_general(cfg: &Config, what: &str) -> (Contact, Contact) {
-    let fast = Contact::new(cfg).unwrap();
+    let mut fast = Contact::new(cfg).unwrap();
     let mut general = Contact::new(cfg).unwrap();
+    // the exact temperature solve on both: the two solves agree within its tolerance (the
+    // predictor-corrector's own agreement: tests/physics/temperature_solve.rs)
+    for c in [&mut fast, &mut general] {
+        c.set_temperature_solve(TemperatureSolve::Exact);
+    }
     assert!(
         general.set_softening_solve(false),
         "{what}: the scalar solve should apply"
@@ -127,6 +133,9 @@ fn scalar_solve_agrees_with_the_general_solve_in_transient_steps() {
         let cfg = with_grid(preset(name), 30, 9);
         let mut fast = Contact::new(&cfg).unwrap();
         let mut general = Contact::new(&cfg).unwrap();
+        for c in [&mut fast, &mut general] {
+            c.set_temperature_solve(TemperatureSolve::Exact);
+        }
         fast.set_scheme(scheme);
         general.set_scheme(scheme);
         general.set_softening_solve(false);

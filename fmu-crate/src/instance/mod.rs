@@ -644,13 +644,15 @@ impl Instance {
         }
     }
 
-    /// Gives the model the importer's `threads` and `scheme` (settings of the instance, not
-    /// of a state: they say how to compute, not what).
+    /// Gives the model the importer's `threads`, `scheme` and `temperature_solve` (settings
+    /// of the instance, not of a state: they say how to compute, not what).
     fn apply_how_to_compute(&mut self) -> Result<(), String> {
         let (n, scheme) = (self.settings.threads.max(1), self.scheme());
+        let solve = self.settings.temperature_solve();
         match self.model.as_mut() {
             Some(m) => {
                 m.set_scheme(scheme.unwrap_or(m.config().scheme));
+                m.set_temperature_solve(solve.unwrap_or(m.config().temperature_solve));
                 m.set_threads(n).map_err(|e| e.to_string())
             }
             None => Ok(()),
@@ -665,13 +667,15 @@ impl Instance {
                 "{F}: the state is refused ({e}); the instance is unchanged"
             ));
         }
-        // the importer's threads, scheme and rel_tol stay (a serialized state does not carry
-        // them); the scheme rel_tol chose comes with the state, as the grid does
+        // the importer's threads, scheme, temperature_solve and rel_tol stay (a serialized
+        // state does not carry them); the scheme rel_tol chose comes with the state, as the
+        // grid does
         let (threads, scheme, rel_tol) = (
             self.settings.threads,
             self.settings.scheme,
             self.settings.rel_tol,
         );
+        let solve = self.settings.temperature_solve;
         // a state taken before initialization completed holds at most a provisional model (the
         // steady state of the inputs it had then): it is rebuilt from the restored inputs at
         // fmi2ExitInitializationMode, as in the instance that took it
@@ -681,6 +685,8 @@ impl Instance {
             // else the configuration's (that of the state)
             let scheme = s.tol_scheme.or(self.settings.scheme());
             m.set_scheme(scheme.unwrap_or(m.config().scheme));
+            let by_code = self.settings.temperature_solve();
+            m.set_temperature_solve(by_code.unwrap_or(m.config().temperature_solve));
             if let Err(e) = m.set_threads(threads.max(1)) {
                 return self.error(format!("{F}: {e}; the instance is unchanged"));
             }
@@ -688,6 +694,7 @@ impl Instance {
         self.settings = s.settings.clone();
         self.settings.threads = threads;
         self.settings.scheme = scheme;
+        self.settings.temperature_solve = solve;
         self.settings.rel_tol = rel_tol;
         self.inputs = s.inputs;
         self.time = s.time;

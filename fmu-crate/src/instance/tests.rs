@@ -23,6 +23,49 @@ fn initialized() -> Instance {
     i
 }
 
+/// The parameter `temperature_solve`: it reads back as set (0: the configuration's, exact),
+/// its predictor-corrector agrees with the exact solve within 0.1 % without being bit-equal,
+/// a restored state keeps the instance's setting and repeats its step, and codes outside
+/// [0, 2] are refused.
+#[test]
+fn temperature_solve_is_a_setting_of_the_instance() {
+    let run = |code: i32| {
+        let mut i = Instance::new("t", None, false);
+        for (n, x) in [("nx", 20), ("ny", 3), ("temperature_solve", code)] {
+            assert_eq!(i.set_integer(vr(n), x), Status::Ok);
+        }
+        assert_eq!(i.enter_initialization(), Status::Ok);
+        assert_eq!(i.exit_initialization(), Status::Ok);
+        assert_eq!(i.get_integer(vr("temperature_solve")), Ok(code.max(1)));
+        let mut fx = Vec::new();
+        let mut saved = None;
+        for k in 0..20 {
+            assert_eq!(i.set_real(vr("cx"), 0.002 + 0.002 * k as f64), Status::Ok);
+            assert_eq!(i.do_step(k as f64 * 1e-4, 1e-4), Status::Ok);
+            fx.push(i.get_real(vr("Fx")).expect("Fx"));
+            if k == 10 {
+                saved = Some(i.get_state());
+            }
+        }
+        assert_eq!(i.set_state(saved.as_ref().expect("state")), Status::Ok);
+        assert_eq!(i.get_integer(vr("temperature_solve")), Ok(code.max(1)));
+        assert_eq!(i.set_real(vr("cx"), 0.002 + 0.002 * 11.0), Status::Ok);
+        assert_eq!(i.do_step(11e-4, 1e-4), Status::Ok);
+        fx.push(i.get_real(vr("Fx")).expect("Fx"));
+        fx
+    };
+    let (unset, exact, pc) = (run(0), run(1), run(2));
+    assert_eq!(unset, exact);
+    assert_eq!(pc[11], pc[20], "a restored state repeats its step");
+    assert_ne!(pc[..20], exact[..20]);
+    for (c, r) in pc.iter().zip(&exact) {
+        assert!((c - r).abs() <= 1e-3 * r.abs(), "{c} vs {r}");
+    }
+    let mut i = Instance::new("t", None, false);
+    assert_eq!(i.set_integer(vr("temperature_solve"), 3), Status::Error);
+    assert_eq!(i.set_integer(vr("temperature_solve"), -1), Status::Error);
+}
+
 #[test]
 fn threads_give_the_same_steps_and_survive_a_state_restore() {
     let run = |threads: i32| {
