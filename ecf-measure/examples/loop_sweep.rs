@@ -1,8 +1,9 @@
 //! The search of formula forms on files it was never tuned on: every hidden-effect case and files with nothing missing over noise seeds, with the held-out error against the true noise, the variable named, and the time.
 //!
-//! `cargo run --release -p ecf-measure --example loop_sweep -- [--seeds N] [--nulls N] [--only NAME] [--threads N] [--layout other] [--write DIR]`
+//! `cargo run --release -p ecf-measure --example loop_sweep -- [--seeds N] [--nulls N] [--only NAME] [--threads N] [--layout standard|other|sparse] [--write DIR]`
 //! (`--write`: each case's file and truth into DIR; `--layout other`: the files of another
-//! rig, 4 speeds x 2 loads x 16 creepages with another noise)
+//! rig, 4 speeds x 2 loads x 16 creepages with another noise; `--layout sparse`: 3 speeds x
+//! 3 loads x 7 creepages of 0.5-15 %, noise 3 % of |f|)
 //! (`bash scripts/loop-sweep.sh` runs it with the defaults: 2 seeds per case, 20 seeds of
 //! files with nothing missing per preset). The files come from `tests/measurement/hidden.rs`:
 //! seeds and truths the search never reads.
@@ -93,9 +94,10 @@ fn main() {
         .unwrap_or(20);
     let only = arg(&args, "--only");
     let write = arg(&args, "--write");
-    let layout = match arg(&args, "--layout").as_deref() {
-        Some("other") => hidden::Layout::other(),
-        _ => hidden::Layout::standard(),
+    let layout_name = arg(&args, "--layout").unwrap_or_else(|| "standard".into());
+    let Some(layout) = hidden::Layout::by_name(&layout_name) else {
+        eprintln!("--layout: standard, other or sparse, not '{layout_name}'");
+        std::process::exit(2);
     };
     let threads: usize = arg(&args, "--threads")
         .and_then(|s| s.parse().ok())

@@ -7,7 +7,8 @@
 //! one value per curve, drawn from the seed; a distractor column has no effect. A second
 //! layout ([`Layout::other`]) changes everything the search might have been tuned to: 4
 //! speeds x 2 loads, 16 creepages from 0.1 % to 20 % (128 rows), noise of 1 % of |f| plus
-//! 0.005.
+//! 0.005. A third ([`Layout::sparse`]) has few rows and much noise: 3 speeds x 3 loads, 7
+//! creepages from 0.5 % to 15 % (63 rows), noise of 3 % of |f| plus 0.002.
 //! Shared by the test `diagnose_unseen` and the sweep `cargo run --release -p ecf-measure
 //! --example loop_sweep`.
 #![allow(dead_code)]
@@ -191,6 +192,26 @@ impl Layout {
             creepages: 16,
             cx_range: (0.001, 0.2),
             noise: (0.01, 0.005),
+        }
+    }
+    /// A third rig, few rows and noisy: 3 speeds x 3 loads x 7 creepages from 0.5 % to 15 %
+    /// (63 rows), noise 3 % of |f| + 0.002.
+    pub fn sparse() -> Self {
+        Layout {
+            speeds: &[8.0, 16.0, 30.0],
+            loads: &[50.0, 90.0, 130.0],
+            creepages: 7,
+            cx_range: (0.005, 0.15),
+            noise: (0.03, 0.002),
+        }
+    }
+    /// The layout of a name: `standard`, `other` or `sparse`.
+    pub fn by_name(name: &str) -> Option<Self> {
+        match name {
+            "standard" => Some(Self::standard()),
+            "other" => Some(Self::other()),
+            "sparse" => Some(Self::sparse()),
+            _ => None,
         }
     }
     /// Standard deviation of the rig's noise at traction coefficient `f`.
