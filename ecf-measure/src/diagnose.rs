@@ -3,9 +3,11 @@
 //! 1. Residuals of the configuration (as given) against every variable: creepage, slip
 //!    velocity, frictional power, model temperature, speed, load, p0, dc_x/dt (time series)
 //!    and every extra column; ranked by |Pearson r|.
-//! 2. Held-out error: the rows are split into folds by speed (or load, or series, whichever
-//!    has at least two values); for each fold the free parameters are fitted on the other
-//!    folds and the fold is predicted. The baseline is the configuration with its default
+//! 2. Held-out error: the rows are split into folds by curves of speed x load where the
+//!    file crosses them (each fold's training rows then have every speed and every load),
+//!    else by speed (or load, or series, whichever has at least two values);
+//!    for each fold the free parameters are fitted on the other folds and the fold is
+//!    predicted. The baseline is the configuration with its default
 //!    free parameters ([`crate::fit::default_free`]); each candidate is the configuration
 //!    plus one catalogue effect it lacks, with that effect's parameters freed as well.
 //! 3. Candidates are ranked by held-out CV(RMSE). A missing effect is claimed only when the

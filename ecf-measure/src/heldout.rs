@@ -10,8 +10,12 @@ use creep_core::error::{CreepError, Result};
 /// A candidate must lower the held-out CV(RMSE) by this fraction of the baseline's to be claimed.
 pub const CLAIM_FRACTION: f64 = 0.25;
 
-/// Fold labels: by speed, else load, else series, else 3 interleaved folds.
+/// Fold labels: crossed curves of speed and load ([`crossed`]) where the file has them, else
+/// by speed, else load, else series, else 3 interleaved folds.
 pub(crate) fn folds(data: &Dataset) -> (String, Vec<usize>) {
+    if let Some(labels) = crossed(data) {
+        return ("curves of v_mps x fn_kN".into(), labels);
+    }
     type KeyFn = fn(&crate::measure::Row) -> String;
     let by: [(&str, KeyFn); 3] = [
         ("v_mps", |r| format!("{}", r.v)),
@@ -41,6 +45,54 @@ pub(crate) fn folds(data: &Dataset) -> (String, Vec<usize>) {
     (
         "rows (3 interleaved folds)".into(),
         (0..data.rows.len()).map(|i| i % 3).collect(),
+    )
+}
+
+/// Fold labels for steady curves on crossed speeds and loads: when every speed is measured at
+/// two loads or more and every load at two speeds or more, the curve of the `i`-th speed
+/// (by value) and `j`-th load falls in fold (i + j) mod max(speeds, loads). A fold then holds
+/// at most one curve of each speed and of each load, and its training rows have every speed
+/// and every load: a factor that changes between two measured speeds (a threshold) is placed
+/// by the other load's curves, where folds by speed would never see the held-out speed. As
+/// many folds as folds by speed (or load) would give, of the same size. `None` for time
+/// series and for files whose speeds and loads are not crossed.
+fn crossed(data: &Dataset) -> Option<Vec<usize>> {
+    if data.rows.iter().any(|r| r.t.is_some()) {
+        return None;
+    }
+    let distinct = |x: &mut Vec<f64>| {
+        x.sort_by(|a, b| a.total_cmp(b));
+        x.dedup();
+    };
+    let mut speeds: Vec<f64> = data.rows.iter().map(|r| r.v).collect();
+    let mut loads: Vec<f64> = data.rows.iter().map(|r| r.fn_n).collect();
+    distinct(&mut speeds);
+    distinct(&mut loads);
+    let rank = |x: &[f64], v: f64| x.iter().position(|u| *u == v).unwrap_or(0);
+    let cells: Vec<(usize, usize)> = data
+        .rows
+        .iter()
+        .map(|r| (rank(&speeds, r.v), rank(&loads, r.fn_n)))
+        .collect();
+    let mut seen = vec![vec![false; loads.len()]; speeds.len()];
+    for &(i, j) in &cells {
+        seen[i][j] = true;
+    }
+    let per_speed = seen.iter().all(|l| l.iter().filter(|s| **s).count() >= 2);
+    let per_load = (0..loads.len()).all(|j| seen.iter().filter(|l| l[j]).count() >= 2);
+    if !(per_speed && per_load) {
+        return None;
+    }
+    let k = speeds.len().max(loads.len());
+    // the folds that hold a curve, numbered 0, 1, ... in order
+    let raw: Vec<usize> = cells.iter().map(|(i, j)| (i + j) % k).collect();
+    let mut used: Vec<usize> = raw.clone();
+    used.sort_unstable();
+    used.dedup();
+    Some(
+        raw.iter()
+            .map(|f| used.iter().position(|u| u == f).unwrap_or(0))
+            .collect(),
     )
 }
 
@@ -224,4 +276,55 @@ pub(crate) fn side_by_side<T: Send>(
     });
     done.sort_by_key(|(j, _)| *j);
     done.into_iter().map(|(_, t)| t).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::measure::Defaults;
+
+    /// A file with one row per (speed, load) point.
+    fn file(points: &[(f64, f64)]) -> Dataset {
+        let mut csv = String::from("cx,f,v_mps,fn_kN\n");
+        for (v, fkn) in points {
+            csv += &format!("0.01,0.3,{v},{fkn}\n");
+        }
+        Dataset::from_csv_str(&csv, "t.csv", &Defaults::default()).unwrap()
+    }
+
+    #[test]
+    fn crossed_curves_keep_every_speed_and_load_in_training() {
+        let speeds = [6.0, 12.0, 18.0, 28.0];
+        let pts: Vec<(f64, f64)> = speeds
+            .iter()
+            .flat_map(|&v| [(v, 80.0), (v, 120.0)])
+            .collect();
+        let d = file(&pts);
+        let (by, labels) = folds(&d);
+        assert_eq!(by, "curves of v_mps x fn_kN");
+        assert_eq!(fold_count(&labels), 4);
+        for f in 0..4 {
+            let train: Vec<&(f64, f64)> = pts
+                .iter()
+                .zip(&labels)
+                .filter(|(_, l)| **l != f)
+                .map(|(p, _)| p)
+                .collect();
+            for v in speeds {
+                assert!(train.iter().any(|p| p.0 == v), "fold {f} lacks speed {v}");
+            }
+            for l in [80.0, 120.0] {
+                assert!(train.iter().any(|p| p.1 == l), "fold {f} lacks load {l}");
+            }
+        }
+    }
+
+    #[test]
+    fn speeds_at_one_load_each_fall_back_to_folds_by_speed() {
+        // the second load only at one speed: not crossed
+        let d = file(&[(5.0, 80.0), (10.0, 80.0), (15.0, 80.0), (15.0, 120.0)]);
+        let (by, labels) = folds(&d);
+        assert_eq!(by, "v_mps");
+        assert_eq!(labels, vec![0, 1, 2, 2]);
+    }
 }

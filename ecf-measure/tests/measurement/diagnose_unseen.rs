@@ -3,9 +3,9 @@
 //! A bounded sample of the sweep `bash scripts/loop-sweep.sh` (every case, 20 seeds of files
 //! with nothing missing per preset): two hidden effects, one that scales both strengths with
 //! speed, one in an extra column beside a distractor, and a threshold in the local
-//! temperature that the noise estimate partly reads as noise; and three files with nothing
-//! missing. The time bound is lifted so that the result does not depend on the machine's
-//! speed.
+//! temperature that the noise estimate partly reads as noise; a threshold in the speed
+//! between two of another rig's four speeds; and three files with nothing missing. The time
+//! bound is lifted so that the result does not depend on the machine's speed.
 use crate::hidden;
 use ecf_measure::diagnose::{diagnose_opts, Options};
 
@@ -17,12 +17,16 @@ fn opts() -> Options {
 }
 
 fn check_case(name: &str, seed: u64) {
+    check_case_in(&hidden::Layout::standard(), name, seed);
+}
+
+fn check_case_in(layout: &hidden::Layout, name: &str, seed: u64) {
     let c = hidden::cases()
         .into_iter()
         .find(|c| c.name == name)
         .expect("case");
     let truth = hidden::truth(c.preset, c.target, Some(c.factor));
-    let (data, clean) = hidden::file(&truth, c.column, c.distractor, seed);
+    let (data, clean) = hidden::file_in(layout, &truth, c.column, c.distractor, seed);
     let cfg = creep_core::Config::preset(c.preset).unwrap();
     let d = diagnose_opts(&cfg, &data, &opts(), &|_| {}).unwrap();
     eprintln!("{name}: {}", d.verdict);
@@ -66,6 +70,13 @@ fn a_saturating_effect_of_a_data_column_is_found_beside_a_distractor() {
 #[test]
 fn a_threshold_in_the_local_temperature_is_found_though_it_bends_the_curves() {
     check_case("temperature-threshold-tau_c2", 9);
+}
+
+#[test]
+fn a_speed_threshold_between_two_of_four_speeds_is_placed_by_the_other_load() {
+    // 4 speeds x 2 loads: the folds are curves of speed x load, so that each fold's training
+    // rows have both sides of the threshold at 14 m/s (between 12 and 18 m/s)
+    check_case_in(&hidden::Layout::other(), "speed-threshold-tau_c2", 10);
 }
 
 #[test]
