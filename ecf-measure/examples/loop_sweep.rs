@@ -1,9 +1,11 @@
 //! The search of formula forms on files it was never tuned on: every hidden-effect case and files with nothing missing over noise seeds, with the held-out error against the true noise, the variable named, and the time.
 //!
-//! `cargo run --release -p ecf-measure --example loop_sweep -- [--seeds N] [--nulls N] [--only NAME] [--threads N] [--layout standard|other|sparse] [--write DIR]`
+//! `cargo run --release -p ecf-measure --example loop_sweep -- [--seeds N] [--nulls N] [--only NAME] [--threads N] [--layout standard|other|sparse] [--presets dry,table4.1,wet] [--write DIR]`
 //! (`--write`: each case's file and truth into DIR; `--layout other`: the files of another
 //! rig, 4 speeds x 2 loads x 16 creepages with another noise; `--layout sparse`: 3 speeds x
-//! 3 loads x 7 creepages of 0.5-15 %, noise 3 % of |f|)
+//! 3 loads x 7 creepages of 0.5-15 %, noise 3 % of |f|; `--presets`: the presets of the files
+//! with nothing missing)
+//! (`LOOP_SWEEP_VERBOSE=1`: each file's verdict and the search's best forms on stderr)
 //! (`bash scripts/loop-sweep.sh` runs it with the defaults: 2 seeds per case, 20 seeds of
 //! files with nothing missing per preset). The files come from `tests/measurement/hidden.rs`:
 //! seeds and truths the search never reads.
@@ -53,6 +55,33 @@ fn run(
     let d = diagnose_opts(cfg, data, &Options::new(threads), &|_| {}).expect("diagnose");
     let seconds = t.elapsed().as_secs_f64();
     let cpu = cpu_seconds() - c0;
+    if std::env::var_os("LOOP_SWEEP_VERBOSE").is_some() {
+        // the verdict and the search's best forms, for a file that misses
+        eprintln!("folds by {} ({} folds): {}", d.folds_by, d.folds, d.verdict);
+        if let Some(s) = &d.search {
+            let c = &s.cost;
+            eprintln!(
+                "  search {:.1} s; evaluations: fold fits {}, needed factors {}, shortlist {}, finalists {}",
+                s.seconds,
+                c.fold_fit_evaluations,
+                c.inverse_evaluations,
+                c.shortlist_evaluations,
+                c.final_evaluations
+            );
+        }
+        for f in d.search.iter().flat_map(|s| s.forms.iter().take(8)) {
+            eprintln!(
+                "  {} x {} in {}: screened {:.2} %, shortlist {:.2} %, held-out {:.2} %, z {:.1}",
+                f.target,
+                f.shape,
+                f.variable,
+                f.screen_cv_rmse_pct,
+                f.shortlist_cv_rmse_pct,
+                f.heldout_cv_rmse_pct,
+                f.evidence_z
+            );
+        }
+    }
     let p = d.search.as_ref().and_then(|s| s.proposed.clone());
     let est_noise = d.noise.as_ref().map(|n| n.cv_rmse_pct).unwrap_or(f64::NAN);
     let margin = d.search.as_ref().and_then(|s| s.forms.first()).map(|f| {
@@ -161,7 +190,8 @@ fn main() {
     }
     println!("\n| preset | seeds | searched | proposals | largest gain / noise | largest evidence | longest wall s | longest CPU s / thread |");
     println!("|---|---|---|---|---|---|---|---|");
-    for preset in ["dry", "table4.1", "wet"] {
+    let presets = arg(&args, "--presets").unwrap_or_else(|| "dry,table4.1,wet".into());
+    for preset in presets.split(',') {
         let (mut proposals, mut longest, mut searched, mut cpu) = (0, 0.0f64, 0, 0.0f64);
         let (mut gain, mut z) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
         for seed in 1..=nulls {
