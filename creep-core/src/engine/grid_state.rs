@@ -299,6 +299,10 @@ impl GridState {
     /// distance-weighted c_x, c_y (m) and spin (-) as 5 x f64.
     pub fn write(&self, w: &mut Writer, (nx, ny): (usize, usize)) {
         self.run.write(w);
+        // per bristle 7 f64 and a byte and K f64, twice (node states); per strip a head,
+        // a phase and 5 f64
+        let nb = ny * (nx + 1);
+        w.reserve(12 + 2 * nb * (57 + 8 * N_KERNEL) + ny * (4 + 8 + 40));
         w.u32(nx as u32);
         w.u32(ny as u32);
         w.u32(N_KERNEL as u32);
