@@ -313,3 +313,55 @@ fn a_name_stored_twice_is_refused() {
         assert!(e.contains(&want), "{want}: {e}");
     }
 }
+
+/// A state of a configuration file with a formula and a Rust effect (parameters whose
+/// decimal forms are long, a data column from an auxiliary input) restores in a fresh
+/// instance after the file is gone, and continues bit for bit.
+#[test]
+fn formula_and_rust_effects_come_back_without_the_configuration_file() {
+    let dir = std::env::temp_dir().join(format!("ecf_state_effects_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("effects.json");
+    std::fs::write(
+        &path,
+        r#"{"preset": "dry", "grid": {"nx": 8, "ny": 3},
+            "formula_effects": [{"name": "h", "target": "tau_c2", "factor": "1 - k * humidity",
+              "params": {"k": {"value": 0.0013333333333333333, "min": 0, "max": 0.01}}}],
+            "custom_effects": [{"name": "humidity_softening",
+              "params": {"k": 0.30000000000000004, "h0_pct": 47.123456789012345}}]}"#,
+    )
+    .unwrap();
+    let mut a = Instance::new("t", None, false);
+    assert_eq!(
+        a.set_string(vr("config_file"), path.to_str().unwrap()),
+        Status::Ok
+    );
+    assert_eq!(a.set_string(vr("columns"), "humidity=aux2"), Status::Ok);
+    assert_eq!(a.set_real(vr("aux2"), 61.5), Status::Ok);
+    assert_eq!(a.enter_initialization(), Status::Ok);
+    assert_eq!(a.exit_initialization(), Status::Ok);
+    assert_eq!(a.set_real(vr("cx"), 0.01), Status::Ok);
+    assert_eq!(a.do_step(0.0, 5e-4), Status::Ok);
+    let snap = a.get_state();
+    let bytes = serialize(&snap);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let back = deserialize(&bytes).expect("deserialize without the file");
+    let (c0, c1) = (snap.cfg.as_ref().unwrap(), back.cfg.as_ref().unwrap());
+    assert_eq!(c0.modifiers.len(), 2);
+    assert_eq!(c0, c1);
+    assert_eq!(c0.to_json(), c1.to_json());
+    let mut b = Instance::new("fresh", None, false);
+    assert_eq!(b.set_state(&back), Status::Ok);
+    for (k, cx) in [0.02, 0.03].into_iter().enumerate() {
+        let t = 5e-4 * (k + 1) as f64;
+        for i in [&mut a, &mut b] {
+            assert_eq!(i.set_real(vr("cx"), cx), Status::Ok);
+            assert_eq!(i.set_real(vr("aux2"), 40.0 + 10.0 * k as f64), Status::Ok);
+            assert_eq!(i.do_step(t, 5e-4), Status::Ok);
+        }
+        for o in ["Fx", "T_max", "P_fric"] {
+            let (x, y) = (a.get_real(vr(o)).unwrap(), b.get_real(vr(o)).unwrap());
+            assert_eq!(x.to_bits(), y.to_bits(), "step {k}: {o}");
+        }
+    }
+}
