@@ -60,12 +60,17 @@ pub(super) fn read_run(r: &mut StateReader, v: u32) -> Result<RunState> {
 
 /// The configuration's JSON with a `scheme`: a configuration saved without one ran cell by
 /// cell (any other text is returned as it is, for the reader's message).
-pub(super) fn with_scheme(json: &str) -> String {
-    match serde_json::from_str::<Value>(json) {
-        Ok(Value::Object(mut o)) if !o.contains_key("scheme") => {
-            o.insert("scheme".into(), Value::String("cells".into()));
-            Value::Object(o).to_string()
-        }
-        _ => json.to_string(),
+pub(super) fn with_scheme(json: &str) -> std::borrow::Cow<'_, str> {
+    /// The top-level key `scheme`, if any (the rest skipped unparsed).
+    #[derive(serde::Deserialize)]
+    struct Scheme {
+        scheme: Option<serde::de::IgnoredAny>,
     }
+    if let Ok(Scheme { scheme: None }) = serde_json::from_str(json) {
+        if let Ok(Value::Object(mut o)) = serde_json::from_str::<Value>(json) {
+            o.insert("scheme".into(), Value::String("cells".into()));
+            return Value::Object(o).to_string().into();
+        }
+    }
+    json.into()
 }
