@@ -9,6 +9,10 @@ impl Writer {
     pub fn new() -> Self {
         Writer(Vec::new())
     }
+    /// Room for `n` more bytes, so that writing them reallocates nothing.
+    pub fn reserve(&mut self, n: usize) {
+        self.0.reserve(n);
+    }
     /// One byte.
     pub fn u8(&mut self, x: u8) {
         self.0.push(x);

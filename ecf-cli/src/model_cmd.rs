@@ -101,7 +101,7 @@ pub(crate) struct ModelArgs {
     /// How the local temperature of each bristle move is solved: exact (the implicit solve
     /// to its tolerance, the reference) or predictor (a predictor-corrector in two or three
     /// evaluations of the material law, within 0.025 % of exact on the accuracy benchmark;
-    /// docs/model.md section 6). Default: the configuration's (exact)
+    /// docs/model.md section 6). Default: the configuration's (predictor)
     #[arg(long, value_enum)]
     temperature_solve: Option<crate::TemperatureSolveArg>,
     /// Lateral creepage, dimensionless

@@ -453,6 +453,35 @@ impl Settings {
         true
     }
 
+    /// The value of a setting that a state carries, if the importer set it: every parameter
+    /// but `threads`, `scheme`, `temperature_solve` and `rel_tol`, which are the restoring
+    /// instance's (they say how to compute, not what). None: not set (its start value), or
+    /// not carried. [`Self::apply`] of the value sets it again.
+    pub fn stored(&self, slot: Slot) -> Option<Value> {
+        match slot {
+            Slot::Param(p) => self.params.get(&p).map(|x| Value::Real(*x)),
+            Slot::Geo(g) => self.geo[g.index()].map(Value::Real),
+            Slot::GeometryMode => (self.geometry != 0).then_some(Value::Integer(self.geometry)),
+            Slot::Nx => self.nx.map(|n| Value::Integer(n as i32)),
+            Slot::Ny => self.ny.map(|n| Value::Integer(n as i32)),
+            Slot::Effect(e) => self.effects.get(&e).map(|on| Value::Boolean(*on)),
+            Slot::Model => self.model_set.then(|| Value::String(self.model.clone())),
+            Slot::Preset => (!self.preset.is_empty()).then(|| Value::String(self.preset.clone())),
+            Slot::ConfigFile => {
+                (!self.config_file.is_empty()).then(|| Value::String(self.config_file.clone()))
+            }
+            Slot::Columns => {
+                (!self.columns.is_empty()).then(|| Value::String(self.columns.clone()))
+            }
+            Slot::Threads
+            | Slot::Scheme
+            | Slot::TemperatureSolve
+            | Slot::RelTol
+            | Slot::Input(_)
+            | Slot::Output(_) => None,
+        }
+    }
+
     /// The value of a parameter: as set, else from the resolved configuration `cfg` (called
     /// only when needed). None if the variable is not a parameter.
     pub fn get<'c>(
@@ -614,6 +643,33 @@ impl Settings {
         }
     }
 
+    /// Sets the geometry of `cfg` from the geometry mode (1 semi-axes, 2 curvatures; 0
+    /// leaves it): each value as set, else `cfg`'s, else its start value.
+    pub fn apply_geometry(&self, cfg: &mut Config) {
+        let base = cfg.geometry;
+        let g = |g: Geo| {
+            self.geo[g.index()]
+                .or(geo_of(base, g))
+                .unwrap_or_else(|| g.start())
+        };
+        match self.geometry {
+            1 => {
+                cfg.geometry = Geometry::SemiAxes {
+                    a: g(Geo::ARef),
+                    b: g(Geo::BRef),
+                    fn_ref: g(Geo::FnRef),
+                }
+            }
+            2 => {
+                cfg.geometry = Geometry::Curvatures {
+                    rx: g(Geo::Rx),
+                    ry: g(Geo::Ry),
+                }
+            }
+            _ => {}
+        }
+    }
+
     /// Resolves the configuration: preset or file (relative paths against `resources`),
     /// then every parameter the importer set; with rel_tol > 0, the grid it chooses at the
     /// speed `v` (m/s, the input's current value). Also returns whether the configuration
@@ -637,29 +693,7 @@ impl Settings {
         };
         grid.validate().map_err(|e| e.to_string())?;
         cfg.grid = grid;
-        // a geometry value: as set, else the configuration's, else the start value
-        let base = cfg.geometry;
-        let g = |g: Geo| {
-            s.geo[g.index()]
-                .or(geo_of(base, g))
-                .unwrap_or_else(|| g.start())
-        };
-        match s.geometry {
-            1 => {
-                cfg.geometry = Geometry::SemiAxes {
-                    a: g(Geo::ARef),
-                    b: g(Geo::BRef),
-                    fn_ref: g(Geo::FnRef),
-                }
-            }
-            2 => {
-                cfg.geometry = Geometry::Curvatures {
-                    rx: g(Geo::Rx),
-                    ry: g(Geo::Ry),
-                }
-            }
-            _ => {}
-        }
+        self.apply_geometry(&mut cfg);
         if cfg.model == ModelKind::Fastsim && !cfg.effects.has(Effect::Coulomb) {
             return Err("model fastsim needs effect_coulomb = true".into());
         }

@@ -738,7 +738,7 @@ fn temperature_solve_var() -> Var {
     kind: Kind::Integer,
     causality: Causality::Parameter,
     unit: None,
-    description: "how the local temperature of each bristle move (seed Eq. 4.35) is solved (the start value 0 means 'not set': a configuration file's `temperature_solve`, else exact): 1 exact, the implicit solve to 1e-10 relative change of the softening factors (the reference); 2 the predictor-corrector, two or three evaluations of the material law per move, within 0.025 % of 1 in F_x, P_fric and the T_max rise on the accuracy benchmark (docs/model.md section 6). A setting of the instance like threads: a restored state keeps it".into(),
+    description: "how the local temperature of each bristle move (seed Eq. 4.35) is solved (the start value 0 means 'not set': a configuration file's `temperature_solve`, else the predictor-corrector): 1 exact, the implicit solve to 1e-10 relative change of the softening factors (the reference); 2 the predictor-corrector, two or three evaluations of the material law per move, within 0.025 % of 1 in F_x, P_fric and the T_max rise on the accuracy benchmark (docs/model.md section 6). A setting of the instance like threads: a restored state keeps it".into(),
     start: Start::Integer(0),
     min: Some(0.0),
     max: Some(2.0),

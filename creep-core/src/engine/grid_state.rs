@@ -1,7 +1,8 @@
 //! The grid's state: exactly what a contact saves and restores, with its byte layout, its reader and its checks.
 //!
 //! Module [`crate::state`] frames it (magic, version, configuration); the layout from the
-//! time on is [`RunState::write`] then, for bristle models, [`GridState::write`].
+//! time on is [`RunState::write`] then, for bristle models, [`GridState::write`]. States of
+//! earlier formats are read by `crate::state::legacy`.
 
 use super::io::{INPUTS, OUTPUTS};
 use super::{Inputs, Outputs, Partial};
@@ -98,28 +99,14 @@ fn put_outputs(w: &mut Writer, o: &Outputs) {
     }
 }
 
-/// Reads values stored by name (version 3 on) or, in versions 1 and 2, `legacy` values
-/// without names in the fixed order of the value references `vrs`. `set(name, value)` is
-/// false for a name this build does not know (`what`: "an input"), which is refused, as is a
-/// name stored twice.
+/// Reads values stored by name: a u32 count, then per value its name and f64. `set(name,
+/// value)` is false for a name this build does not know (`what`: "an input"), which is
+/// refused, as is a name stored twice.
 fn get_named(
     r: &mut StateReader,
-    version: u32,
-    legacy: &[(&'static str, u32)],
     what: &str,
     mut set: impl FnMut(&str, f64) -> bool,
 ) -> Result<()> {
-    if version < 3 {
-        for (name, _) in legacy {
-            let x = r.f()?;
-            if !set(name, x) {
-                return Err(CreepError::State(format!(
-                    "this build has no {what} '{name}'"
-                )));
-            }
-        }
-        return Ok(());
-    }
     let n = r.u()?;
     let mut seen = std::collections::HashSet::new();
     for _ in 0..n {
@@ -140,45 +127,26 @@ fn get_named(
     Ok(())
 }
 
-/// Names of the values with value references in `vrs` in ascending order: the layout of
-/// versions 1 and 2 (released value references never change).
-fn legacy_order(
-    specs: impl Iterator<Item = (&'static str, u32)>,
-    vrs: std::ops::RangeInclusive<u32>,
-) -> Vec<(&'static str, u32)> {
-    let mut v: Vec<_> = specs.filter(|(_, vr)| vrs.contains(vr)).collect();
-    v.sort_by_key(|(_, vr)| *vr);
-    v
+/// Sets the input `name` of `i` to `x`; false for a name this build does not know.
+pub(crate) fn set_input(i: &mut Inputs, name: &str, x: f64) -> bool {
+    match INPUTS.iter().find(|s| s.name == name) {
+        Some(s) => {
+            (s.set)(i, x);
+            true
+        }
+        None => false,
+    }
 }
 
-fn get_inputs(r: &mut StateReader, version: u32) -> Result<Inputs> {
-    let mut i = Inputs::default();
-    let legacy = legacy_order(INPUTS.iter().map(|s| (s.name, s.vr)), 1..=6);
-    get_named(r, version, &legacy, "an input", |name, x| {
-        match INPUTS.iter().find(|s| s.name == name) {
-            Some(s) => {
-                (s.set)(&mut i, x);
-                true
-            }
-            None => false,
+/// Sets the output `name` of `o` to `x`; false for a name this build does not know.
+pub(crate) fn set_output(o: &mut Outputs, name: &str, x: f64) -> bool {
+    match OUTPUTS.iter().find(|s| s.name == name) {
+        Some(s) => {
+            (s.set)(o, x);
+            true
         }
-    })?;
-    Ok(i)
-}
-
-fn get_outputs(r: &mut StateReader, version: u32) -> Result<Outputs> {
-    let mut o = Outputs::default();
-    let legacy = legacy_order(OUTPUTS.iter().map(|s| (s.name, s.vr)), 10..=22);
-    get_named(r, version, &legacy, "an output", |name, x| {
-        match OUTPUTS.iter().find(|s| s.name == name) {
-            Some(s) => {
-                (s.set)(&mut o, x);
-                true
-            }
-            None => false,
-        }
-    })?;
-    Ok(o)
+        None => false,
+    }
 }
 
 impl RunState {
@@ -192,15 +160,28 @@ impl RunState {
         w.u8(self.initialized as u8 | (self.reversed as u8) << 1);
     }
 
-    /// Reads what [`RunState::write`] wrote in format `version` (versions 1 and 2: 6 inputs
-    /// and 13 outputs without names, those with value references 1 to 6 and 10 to 22; version
-    /// 1 had only flag bit 0), refusing non-finite values and inputs out of their ranges.
-    pub fn read(r: &mut StateReader, version: u32) -> Result<RunState> {
+    /// Reads what [`RunState::write`] wrote, refusing non-finite values and inputs out of
+    /// their ranges.
+    pub fn read(r: &mut StateReader) -> Result<RunState> {
         let time = r.f()?;
-        let inputs = get_inputs(r, version)?;
-        let out = get_outputs(r, version)?;
+        let mut inputs = Inputs::default();
+        get_named(r, "an input", |n, x| set_input(&mut inputs, n, x))?;
+        let mut out = Outputs::default();
+        get_named(r, "an output", |n, x| set_output(&mut out, n, x))?;
         let flags = r.b()?;
-        if flags > 3 || (version == 1 && flags > 1) {
+        RunState::checked(time, inputs, out, flags, 3)
+    }
+
+    /// The run state of the values read, checked: `flags` at most `max_flags`, finite
+    /// values, inputs in their ranges.
+    pub fn checked(
+        time: f64,
+        inputs: Inputs,
+        out: Outputs,
+        flags: u8,
+        max_flags: u8,
+    ) -> Result<RunState> {
+        if flags > max_flags {
             return Err(CreepError::State(format!("bad flags byte {flags}")));
         }
         // a state is checked like inputs: a NaN or infinite value would poison every later step
@@ -318,6 +299,10 @@ impl GridState {
     /// distance-weighted c_x, c_y (m) and spin (-) as 5 x f64.
     pub fn write(&self, w: &mut Writer, (nx, ny): (usize, usize)) {
         self.run.write(w);
+        // per bristle 7 f64 and a byte and K f64, twice (node states); per strip a head,
+        // a phase and 5 f64
+        let nb = ny * (nx + 1);
+        w.reserve(12 + 2 * nb * (57 + 8 * N_KERNEL) + ny * (4 + 8 + 40));
         w.u32(nx as u32);
         w.u32(ny as u32);
         w.u32(N_KERNEL as u32);
@@ -336,12 +321,35 @@ impl GridState {
         }
     }
 
-    /// Reads the grid [`GridState::write`] wrote after `run`, in format `version`, for a
-    /// contact of grid `(nx, ny)`. A state of version 3 or older holds no node states: its
-    /// bristles count as at their node, and their next move ends the current cell.
-    pub fn read(
+    /// Reads the grid [`GridState::write`] wrote after `run`, for a contact of grid
+    /// `(nx, ny)`.
+    pub fn read(r: &mut StateReader, run: RunState, grid: (usize, usize)) -> Result<GridState> {
+        let mut g = GridState::read_bristles(r, run, grid)?;
+        let nb = g.st.len();
+        (g.node_st, g.node_acc) = get_bristles(r, nb, "node ")?;
+        for (j, part) in g.part.iter_mut().enumerate() {
+            let x = [r.f()?, r.f()?, r.f()?, r.f()?, r.f()?];
+            if x.iter().any(|v| !v.is_finite()) || x[0] < 0.0 || x[1] < 0.0 {
+                return Err(CreepError::State(format!(
+                    "the part of the current cell of strip {j} is not a distance and a time ({x:?})"
+                )));
+            }
+            *part = Partial {
+                d: x[0],
+                h: x[1],
+                dcx: x[2],
+                dcy: x[3],
+                dcs: x[4],
+            };
+        }
+        Ok(g)
+    }
+
+    /// Reads the grid up to and including the bristles (sizes, heads, phases, bristle
+    /// states and heat histories), with the bristles as their own node states and nothing
+    /// of the current cell travelled.
+    pub fn read_bristles(
         r: &mut StateReader,
-        version: u32,
         run: RunState,
         grid: (usize, usize),
     ) -> Result<GridState> {
@@ -363,7 +371,7 @@ impl GridState {
             phase.push(r.f()?);
         }
         let (st, acc) = get_bristles(r, nb, "")?;
-        let mut g = GridState {
+        Ok(GridState {
             run,
             head,
             phase,
@@ -372,26 +380,7 @@ impl GridState {
             st,
             acc,
             part: vec![Partial::default(); ny],
-        };
-        if version >= 4 {
-            (g.node_st, g.node_acc) = get_bristles(r, nb, "node ")?;
-            for (j, part) in g.part.iter_mut().enumerate() {
-                let x = [r.f()?, r.f()?, r.f()?, r.f()?, r.f()?];
-                if x.iter().any(|v| !v.is_finite()) || x[0] < 0.0 || x[1] < 0.0 {
-                    return Err(CreepError::State(format!(
-                        "the part of the current cell of strip {j} is not a distance and a time ({x:?})"
-                    )));
-                }
-                *part = Partial {
-                    d: x[0],
-                    h: x[1],
-                    dcx: x[2],
-                    dcy: x[3],
-                    dcs: x[4],
-                };
-            }
-        }
-        Ok(g)
+        })
     }
 
     /// Checks a state for a contact of grid `(nx, ny)`: its sizes, the ring-buffer heads and

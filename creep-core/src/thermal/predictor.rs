@@ -6,14 +6,16 @@
 pub enum TemperatureSolve {
     /// The implicit solve of T = t_hist + self_c q(T) to the tolerance
     /// [`temperature_tolerance`] (the reference): 2-5 evaluations of the law per move.
-    #[default]
     Exact,
-    /// A predictor-corrector with a fixed count of evaluations: the law at the predictor
-    /// t_hist + self_c q_prev (the previous move's heat) and at the fixed-point step from it,
+    /// A predictor-corrector with a count of evaluations fixed by the predictor's miss: the
+    /// law at the predictor t_hist + self_c q0 (q0 the heat of the move's start stress over its
+    /// rigid slip) and at the fixed-point step from it,
     /// the root of the secant through both and the state interpolated there
     /// ([`solve_predictor_corrector`]); on the scalar path with a derivative, one evaluation
     /// and a Newton step. Where the two evaluations do not bracket a root on one branch of the
-    /// law, the exact solve runs.
+    /// law, the exact solve runs. The default: within 0.025 % of the exact solve in F_x,
+    /// P_fric and the T_max rise on the accuracy benchmark, at 70-85 % of its cost.
+    #[default]
     PredictorCorrector,
 }
 

@@ -10,17 +10,19 @@
 //! value the state lacks keeps its default, a name this build does not know is refused. The
 //! configuration is compared as text; a state saved before a parameter existed holds no
 //! value for it and loads if this build's value is the parameter's default.
-//! Versions 1 and 2 (read, not written) stored 6 inputs and 13 outputs without names;
-//! version 3 and older no node states (`GridState::read` says how each is read).
+//! States of versions 1 to 3 are read by [`legacy`].
 //! Restoring checks the magic, the version, the configuration and every size, so a state
 //! from another configuration or a corrupt buffer is refused with a message, never misread.
 
 use crate::bytes::{Reader, Writer};
+use crate::config::Config;
 use crate::engine::grid_state::{GridState, RunState, StateReader};
 use crate::error::{CreepError, Result};
 use crate::model::Model;
 use crate::params::{self, Params};
 use serde_json::Value;
+
+mod legacy;
 
 const MAGIC: &[u8; 8] = b"ECFSTATE";
 /// Current version of the byte format.
@@ -76,6 +78,36 @@ fn same_config(saved: &str, now: &str) -> Result<bool> {
     Ok(a == b)
 }
 
+/// Reads the magic, the version and the configuration's JSON text of a state.
+fn header(r: &mut StateReader) -> Result<(u32, String)> {
+    if r.take(8)? != MAGIC {
+        return Err(CreepError::State("not an ECF state (bad magic)".into()));
+    }
+    let v = r.u()?;
+    if !(1..=VERSION).contains(&v) {
+        return Err(CreepError::State(format!(
+            "state format version {v}, this build reads versions 1 to {VERSION}"
+        )));
+    }
+    let n = r.u()? as usize;
+    let cfg = std::str::from_utf8(r.take(n)?)
+        .map_err(|_| CreepError::State("configuration is not UTF-8".into()))?
+        .to_string();
+    Ok((v, cfg))
+}
+
+/// The configuration a state was saved with, read from its JSON: a model built from it
+/// loads the state. Numbers round-trip bit for bit through the JSON (shortest printing,
+/// correctly rounded parsing), but for geometry values, which the document gives in mm or
+/// kN and may come back one unit in the last place off.
+pub fn saved_config(data: &[u8]) -> Result<Config> {
+    let (_, json) = header(&mut StateReader(Reader::new(data)))?;
+    Config::from_json_str(
+        &legacy::with_scheme(&json),
+        "the configuration of a saved state",
+    )
+}
+
 impl Model {
     /// Serializes the complete state.
     pub fn save_state(&self) -> Vec<u8> {
@@ -103,26 +135,18 @@ impl Model {
     /// Restores a state saved by [`Model::save_state`] of a model with the same configuration.
     pub fn load_state(&mut self, data: &[u8]) -> Result<()> {
         let mut r = StateReader(Reader::new(data));
-        if r.take(8)? != MAGIC {
-            return Err(CreepError::State("not an ECF state (bad magic)".into()));
-        }
-        let v = r.u()?;
-        if !(1..=VERSION).contains(&v) {
-            return Err(CreepError::State(format!(
-                "state format version {v}, this build reads versions 1 to {VERSION}"
-            )));
-        }
-        let n = r.u()? as usize;
-        let cfg = std::str::from_utf8(r.take(n)?)
-            .map_err(|_| CreepError::State("configuration is not UTF-8".into()))?
-            .to_string();
+        let (v, cfg) = header(&mut r)?;
         let now = self.config().to_json().to_string();
         if !same_config(&cfg, &now)? {
             return Err(CreepError::State(
                 "the state was saved with a different configuration".into(),
             ));
         }
-        let run = RunState::read(&mut r, v)?;
+        let run = if v == VERSION {
+            RunState::read(&mut r)?
+        } else {
+            legacy::read_run(&mut r, v)?
+        };
         match self {
             Model::Polach {
                 inputs, out, time, ..
@@ -132,7 +156,11 @@ impl Model {
                 *time = run.time;
             }
             Model::Bristle(c) => {
-                let g = GridState::read(&mut r, v, run, c.grid_size())?;
+                let g = if v == VERSION {
+                    GridState::read(&mut r, run, c.grid_size())?
+                } else {
+                    GridState::read_bristles(&mut r, run, c.grid_size())?
+                };
                 if r.0.position() != data.len() {
                     return Err(CreepError::State(format!(
                         "{} trailing bytes",
@@ -149,7 +177,6 @@ impl Model {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::Config;
     use crate::engine::io::{INPUTS, OUTPUTS};
     use crate::engine::Inputs;
 
