@@ -211,7 +211,10 @@ fn main() {
                 searched += 1;
                 gain = gain.max(g);
                 z = z.max(e);
-                eprintln!("{preset} seed {seed}: gain {g:.3} noise, evidence {e:.2}");
+                eprintln!(
+                    "{preset} seed {seed}: gain {g:.3} noise, evidence {e:.2}, {:.0} s wall, {:.0} CPU s per thread",
+                    o.seconds, o.cpu_per_thread
+                );
             }
         }
         let (gain, z) = if searched > 0 {
