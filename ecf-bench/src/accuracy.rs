@@ -36,6 +36,7 @@
 //! on a machine whose speed drifted since (the costs are wall times: on 2026-11-29 every
 //! scheme, the unchanged ones too, ran 1.37-1.43x slower than on 2026-11-26).
 use creep_core::engine::Scheme;
+use creep_core::thermal::TemperatureSolve;
 use creep_core::{Config, Contact, Grid, Inputs};
 use std::time::Instant;
 
@@ -169,8 +170,22 @@ pub(crate) fn config(preset: &str, nx: usize, ny: usize) -> Config {
 
 /// Runs one case on one grid and scheme (one thread).
 pub fn run(case: &Case, nx: usize, ny: usize, scheme: Scheme) -> Response {
+    run_solve(case, nx, ny, scheme, None)
+}
+
+/// [`run`] with the local temperature solved by `solve` (None: the configuration's).
+pub fn run_solve(
+    case: &Case,
+    nx: usize,
+    ny: usize,
+    scheme: Scheme,
+    solve: Option<TemperatureSolve>,
+) -> Response {
     let mut c = Contact::new(&config(case.preset, nx, ny)).expect("contact");
     c.set_scheme(scheme);
+    if let Some(solve) = solve {
+        c.set_temperature_solve(solve);
+    }
     // every strip computed: the cases have no spin, and computing the symmetric strips once
     // would make their costs those of such inputs only (the results are bit-identical
     // either way); the table's costs hold for any inputs

@@ -9,11 +9,10 @@
 //! rise: of its largest rise). The costs are medians of interleaved runs (exact, cheaper,
 //! exact, ...) of the transient cases on one thread: the ratio (cheaper / exact; ratios
 //! measured in one run survive a loaded machine), and each one's wall time / simulated time.
-use crate::accuracy::{cases, config, Case, Kind, FN};
+use crate::accuracy::{cases, config, run_solve, Case, Kind, FN};
 use creep_core::engine::Scheme;
 use creep_core::thermal::TemperatureSolve;
 use creep_core::{Contact, Inputs};
-use std::time::Instant;
 
 /// The acceptance limits of a cheaper solve against the exact one, % (F_x, T_max rise,
 /// P_fric).
@@ -37,26 +36,8 @@ fn run(
     scheme: Scheme,
     solve: TemperatureSolve,
 ) -> (Vec<[f64; 3]>, f64) {
-    let mut c = Contact::new(&config(case.preset, nx, ny)).expect("contact");
-    c.set_scheme(scheme);
-    c.set_temperature_solve(solve);
-    c.set_mirror_strips(false);
-    let inp = |cx: f64| Inputs {
-        cx,
-        v: case.v,
-        fn_n: FN,
-        t_bulk: 20.0,
-        ..Inputs::default()
-    };
-    c.steady(&inp(case.cx(0))).expect("steady");
-    let t0 = Instant::now();
-    let x = (1..=case.steps())
-        .map(|k| {
-            let o = c.step(case.dt, &inp(case.cx(k))).expect("step");
-            [o.fx, o.t_max - 20.0, o.p_fric]
-        })
-        .collect();
-    (x, t0.elapsed().as_secs_f64())
+    let r = run_solve(case, nx, ny, scheme, Some(solve));
+    (r.x, r.wall)
 }
 
 /// The largest difference of `b` from `a` per quantity, % of `a`'s largest magnitude.
