@@ -26,7 +26,16 @@ const GRIDS: [(usize, usize); 6] = [
 
 /// The coarse grids of the second table, with the higher-order rules (`cells-ho`), against
 /// the same `cells` reference: the steady march under `Scheme::CellsHigher`.
-const HO_GRIDS: [(usize, usize); 5] = [(10, 3), (20, 3), (20, 5), (40, 5), (80, 21)];
+const HO_GRIDS: [(usize, usize); 8] = [
+    (10, 3),
+    (20, 3),
+    (20, 5),
+    (40, 5),
+    (80, 5),
+    (40, 9),
+    (80, 7),
+    (80, 21),
+];
 
 /// f of `preset` at speed `v` (m/s) on an `nx` x `ny` grid at each creepage of `cx`, with
 /// the default scheme (`cells`).

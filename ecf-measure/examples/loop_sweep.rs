@@ -1,9 +1,10 @@
 //! The search of formula forms on files it was never tuned on: every hidden-effect case and files with nothing missing over noise seeds, with the held-out error against the true noise, the variable named, and the time.
 //!
-//! `cargo run --release -p ecf-measure --example loop_sweep -- [--seeds N] [--nulls N] [--only NAME] [--threads N] [--layout standard|other|sparse] [--presets dry,table4.1,wet] [--write DIR]`
-//! (`--write`: each case's file and truth into DIR; `--layout other`: the files of another
+//! `cargo run --release -p ecf-measure --example loop_sweep -- [--seeds N] [--nulls N] [--only NAME] [--threads N] [--layout standard|other|sparse|precise] [--presets dry,table4.1,wet] [--write DIR]`
+//! (`--write`: each case's file and truth, and each file with nothing missing, into DIR; `--layout other`: the files of another
 //! rig, 4 speeds x 2 loads x 16 creepages with another noise; `--layout sparse`: 3 speeds x
-//! 3 loads x 7 creepages of 0.5-15 %, noise 3 % of |f|; `--presets`: the presets of the files
+//! 3 loads x 7 creepages of 0.5-15 %, noise 3 % of |f|; `--layout precise`: 4 speeds x 3
+//! loads x 12 creepages of 0.2-20 %, noise 0.4 % of |f| + 0.001; `--presets`: the presets of the files
 //! with nothing missing)
 //! (`LOOP_SWEEP_VERBOSE=1`: each file's verdict and the search's best forms on stderr)
 //! (`bash scripts/loop-sweep.sh` runs it with the defaults: 2 seeds per case, 20 seeds of
@@ -125,7 +126,7 @@ fn main() {
     let write = arg(&args, "--write");
     let layout_name = arg(&args, "--layout").unwrap_or_else(|| "standard".into());
     let Some(layout) = hidden::Layout::by_name(&layout_name) else {
-        eprintln!("--layout: standard, other or sparse, not '{layout_name}'");
+        eprintln!("--layout: standard, other, sparse or precise, not '{layout_name}'");
         std::process::exit(2);
     };
     let threads: usize = arg(&args, "--threads")
@@ -199,6 +200,12 @@ fn main() {
             let column = (seed % 2 == 0).then_some(("humidity", 20.0, 80.0));
             let (data, clean) =
                 hidden::file_in(&layout, &truth, column, seed % 3 == 0, 2000 + seed);
+            if let Some(dir) = &write {
+                let (csv, _) =
+                    hidden::csv_text_in(&layout, &truth, column, seed % 3 == 0, 2000 + seed);
+                let path = std::path::Path::new(dir).join(format!("null-{preset}-{seed}.csv"));
+                std::fs::write(&path, csv).expect("write");
+            }
             let cfg = creep_core::Config::preset(preset).expect("preset");
             let o = run(&cfg, &data, &clean, threads);
             if let Some(p) = &o.proposed {

@@ -187,10 +187,19 @@ pub fn diagnose_with(
 /// The grids the diagnosis may run instead of a costlier configuration grid, cheapest first:
 /// (cells per strip, strips, largest steady error of f against 640 x 168 cells over
 /// c_x = 0.2-30 % for dry, table4.1 and wet at 5-30 m/s, %), all with the higher-order rules
-/// (`bash scripts/bench.sh --only steady-grid`, second table).
-pub const LOOP_GRIDS: [(usize, usize, f64); 2] = [(20, 5, LOOP_ERR_20X5), (40, 5, LOOP_ERR_40X5)];
+/// (`bash scripts/bench.sh --only steady-grid`, second table). With a quarter of the noise
+/// level as the bound, a file's grid follows its noise without a jump in cost: 20 x 5 from a
+/// noise level of 4.5 %, 40 x 5 from 2.2 %, 40 x 9 from 1.3 %, 80 x 7 from 0.9 %.
+pub const LOOP_GRIDS: [(usize, usize, f64); 4] = [
+    (20, 5, LOOP_ERR_20X5),
+    (40, 5, LOOP_ERR_40X5),
+    (40, 9, LOOP_ERR_40X9),
+    (80, 7, LOOP_ERR_80X7),
+];
 const LOOP_ERR_20X5: f64 = 1.12;
 const LOOP_ERR_40X5: f64 = 0.54;
+const LOOP_ERR_40X9: f64 = 0.33;
+const LOOP_ERR_80X7: f64 = 0.22;
 
 /// A loop grid is used when its error is at most this fraction of the noise level: it then
 /// adds at most 3 % to the noise in quadrature.
@@ -512,8 +521,14 @@ fn run(
         .filter(|n| n.cv_rmse_pct > 0.0)
         .map(|n| best_heldout / n.cv_rmse_pct);
     let at_noise = times_noise.map(|t| t <= AT_NOISE);
-    let mut verdict =
-        verdict + &noise_words(noise.as_ref(), times_noise, &best_model, best_heldout);
+    let mut verdict = verdict
+        + &noise_words(
+            noise.as_ref(),
+            times_noise,
+            &best_model,
+            best_heldout,
+            data.rows.len(),
+        );
     // the search of formula forms runs at the noise too: the estimate of a 150-row file is off the true noise
     // by up to 20-30 % either way, and a curve bent by the missing effect itself reads as
     // noise; its proposal rule, a held-out gain against the noise, decides
@@ -538,6 +553,7 @@ fn run(
             best_heldout,
             base_heldout,
             search_seconds,
+            data.rows.len(),
         );
         Some(s)
     } else {
@@ -622,11 +638,12 @@ fn noise_words(
     times_noise: Option<f64>,
     best_model: &str,
     best_heldout: f64,
+    rows: usize,
 ) -> String {
     match (noise, times_noise) {
         (Some(n), Some(t)) if t <= AT_NOISE => format!(
             " The best model ({best_model}, held-out {best_heldout:.2} %) is at the noise level of the data within what fitting on the other folds adds ({t:.1} times it: about {:.2} %, sd {:.4} of F_x/F_N, from {}). The estimate can be off by a fifth or more, and a weak effect may hide there: the search of formula forms looks all the same, and proposes only a form that lowers the held-out error by {:.2} times the noise level.",
-            n.cv_rmse_pct, n.sd_f, n.method, crate::search::GAIN_OF_NOISE
+            n.cv_rmse_pct, n.sd_f, n.method, crate::search::gain_of_noise(rows)
         ),
         (Some(n), Some(t)) => format!(
             " The best model ({best_model}, held-out {best_heldout:.2} %) is still {t:.1} times the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): something is still missing. Besides data columns, a formula effect can use the operating point (v_mps, fn_kN, cx, cy, spin_per_m) and the local state (p_GPa, T_C, u_mm, slip_mps) to scale tau_c1, tau_c2, both strengths together, L_e, L_p or mu (docs/measurements.md).",
@@ -644,6 +661,7 @@ fn search_words(
     best_heldout: f64,
     base_heldout: f64,
     search_seconds: f64,
+    rows: usize,
 ) -> String {
     let c = &s.cost;
     let bound = if c.shortlisted < crate::search::SHORTLIST.min(s.total) {
@@ -706,11 +724,11 @@ fn search_words(
             f.shape,
             f.variable,
             f.heldout_cv_rmse_pct,
-            crate::search::proposal_bound(base_heldout, noise.map(|n| n.cv_rmse_pct)),
+            crate::search::proposal_bound(base_heldout, noise.map(|n| n.cv_rmse_pct), rows),
             match noise {
                 Some(_) => format!(
                     "{:.0} % of the noise level below it",
-                    crate::search::GAIN_OF_NOISE * 100.0
+                    crate::search::gain_of_noise(rows) * 100.0
                 ),
                 None => format!("{:.0} % below it", CLAIM_FRACTION * 100.0),
             },
@@ -722,5 +740,41 @@ fn search_words(
             }
         ),
         (None, None) => " No form could be evaluated: no form is proposed.".to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The grid chosen for a preset at a noise level (%): `None` keeps the preset's 80 x 21.
+    fn chosen(noise: f64) -> Option<(usize, usize)> {
+        let cfg = Config::preset("dry").unwrap();
+        loop_config(&cfg, Some(noise)).map(|(c, _)| (c.grid.nx, c.grid.ny))
+    }
+
+    #[test]
+    fn the_loop_grid_follows_the_noise_level_step_by_step() {
+        assert_eq!(chosen(5.0), Some((20, 5)));
+        assert_eq!(chosen(3.0), Some((40, 5)));
+        // a noise level between 40 x 5's and 80 x 21's bounds takes an intermediate grid,
+        // not the preset's grid at 8 times 40 x 5's cost
+        assert_eq!(chosen(1.84), Some((40, 9)));
+        assert_eq!(chosen(1.0), Some((80, 7)));
+        assert_eq!(chosen(0.5), None);
+        // every grid's error is within a quarter of the noise where it is chosen
+        for noise in [0.9, 1.3, 2.2, 4.5, 10.0] {
+            let (nx, ny) = chosen(noise).unwrap();
+            let err = LOOP_GRIDS
+                .iter()
+                .find(|g| (g.0, g.1) == (nx, ny))
+                .unwrap()
+                .2;
+            assert!(err <= LOOP_ERROR_OF_NOISE * noise, "{nx}x{ny} at {noise} %");
+        }
+        // cheapest first, and each grid more accurate than the one before
+        for w in LOOP_GRIDS.windows(2) {
+            assert!(w[0].0 * w[0].1 < w[1].0 * w[1].1 && w[0].2 > w[1].2);
+        }
     }
 }

@@ -31,7 +31,7 @@
 //!    the paired difference.
 //!
 //! A form is proposed when it beats the best model so far, lowers the configuration's own
-//! held-out CV(RMSE) by [`GAIN_OF_NOISE`] of the noise level (by
+//! held-out CV(RMSE) by [`gain_of_noise`] of the noise level (by
 //! [`crate::heldout::CLAIM_FRACTION`] of its own when the noise cannot be estimated), and its
 //! per-row held-out absolute errors are lower than the configuration's by at least
 //! [`EVIDENCE`] standard errors of the paired difference.
@@ -68,17 +68,28 @@ pub use fits::{FINALISTS, FIT_TOLERANCE};
 pub const EVIDENCE: f64 = 2.0;
 
 /// Fraction of the noise level's CV(RMSE) by which a proposed form must lower the
-/// configuration's own held-out CV(RMSE): a gain that matters against the scatter of the
-/// data, whatever the starting error. On files with nothing missing the configuration is
-/// already near the noise, where no form can gain this much without luck.
+/// configuration's own held-out CV(RMSE) on a file of [`GAIN_ROWS`] rows or more: a gain
+/// that matters against the scatter of the data, whatever the starting error. On files with
+/// nothing missing the configuration is already near the noise, where no form can gain this
+/// much without luck.
 pub const GAIN_OF_NOISE: f64 = 0.12;
 
-/// The held-out CV(RMSE) (%) a proposed form must reach at most: [`GAIN_OF_NOISE`] of the
-/// noise level `noise_cv` (%) below `base_heldout`, or [`CLAIM_FRACTION`] below it when the
-/// noise is unknown.
-pub fn proposal_bound(base_heldout: f64, noise_cv: Option<f64>) -> f64 {
+/// Rows from which the required gain is [`GAIN_OF_NOISE`]; on fewer rows it grows as
+/// sqrt(GAIN_ROWS / rows), as the scatter of a held-out difference of two fits does.
+pub const GAIN_ROWS: usize = 150;
+
+/// The fraction of the noise level a proposed form must gain on a file of `rows` rows:
+/// [`GAIN_OF_NOISE`], times sqrt([`GAIN_ROWS`] / rows) on fewer rows (0.185 on 63).
+pub fn gain_of_noise(rows: usize) -> f64 {
+    GAIN_OF_NOISE * (GAIN_ROWS as f64 / rows.max(1) as f64).sqrt().max(1.0)
+}
+
+/// The held-out CV(RMSE) (%) a proposed form must reach at most on a file of `rows` rows:
+/// [`gain_of_noise`] of the noise level `noise_cv` (%) below `base_heldout`, or
+/// [`CLAIM_FRACTION`] below it when the noise is unknown.
+pub fn proposal_bound(base_heldout: f64, noise_cv: Option<f64>, rows: usize) -> f64 {
     match noise_cv.filter(|n| *n > 0.0) {
-        Some(n) => base_heldout - GAIN_OF_NOISE * n,
+        Some(n) => base_heldout - gain_of_noise(rows) * n,
         None => (1.0 - CLAIM_FRACTION) * base_heldout,
     }
 }
@@ -385,7 +396,7 @@ pub(crate) fn search(
         .iter()
         .map(|f| fits::paired_z(&base_resid, &f.resid))
         .collect();
-    let bound = proposal_bound(base_heldout, noise_cv);
+    let bound = proposal_bound(base_heldout, noise_cv, data.rows.len());
     let proposed_at = chosen
         .filter(|&j| finals[j].cv < best_heldout && finals[j].cv <= bound && z[j] >= EVIDENCE);
     // the report: the finalists (the chosen one first), the rest of the shortlist, the
@@ -670,5 +681,23 @@ impl Searcher<'_> {
                 .collect(),
             fitted_cv_rmse_pct: f64::NAN,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_required_gain_grows_on_small_files_only() {
+        assert_eq!(gain_of_noise(GAIN_ROWS), GAIN_OF_NOISE);
+        assert_eq!(gain_of_noise(600), GAIN_OF_NOISE);
+        assert!((gain_of_noise(63) - 0.12 * (150.0f64 / 63.0).sqrt()).abs() < 1e-12);
+        assert!(gain_of_noise(30) > gain_of_noise(63) && gain_of_noise(63) > gain_of_noise(128));
+        assert_eq!(
+            proposal_bound(3.0, Some(2.0), 600),
+            3.0 - 2.0 * GAIN_OF_NOISE
+        );
+        assert!(proposal_bound(3.0, Some(2.0), 63) < proposal_bound(3.0, Some(2.0), 600));
     }
 }

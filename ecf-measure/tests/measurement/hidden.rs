@@ -8,7 +8,9 @@
 //! layout ([`Layout::other`]) changes everything the search might have been tuned to: 4
 //! speeds x 2 loads, 16 creepages from 0.1 % to 20 % (128 rows), noise of 1 % of |f| plus
 //! 0.005. A third ([`Layout::sparse`]) has few rows and much noise: 3 speeds x 3 loads, 7
-//! creepages from 0.5 % to 15 % (63 rows), noise of 3 % of |f| plus 0.002.
+//! creepages from 0.5 % to 15 % (63 rows), noise of 3 % of |f| plus 0.002. A fourth
+//! ([`Layout::precise`]) has little noise: 4 speeds x 3 loads, 12 creepages from 0.2 % to
+//! 20 % (144 rows), noise of 0.4 % of |f| plus 0.001.
 //! Shared by the test `diagnose_unseen` and the sweep `cargo run --release -p ecf-measure
 //! --example loop_sweep`.
 #![allow(dead_code)]
@@ -205,12 +207,25 @@ impl Layout {
             noise: (0.03, 0.002),
         }
     }
-    /// The layout of a name: `standard`, `other` or `sparse`.
+    /// A fourth rig, precise: 4 speeds x 3 loads x 12 creepages from 0.2 % to 20 % (144
+    /// rows), noise 0.4 % of |f| + 0.001, a noise level under 1 % at which the diagnosis
+    /// needs a fine grid.
+    pub fn precise() -> Self {
+        Layout {
+            speeds: &[7.0, 13.0, 19.0, 27.0],
+            loads: &[70.0, 105.0, 145.0],
+            creepages: 12,
+            cx_range: (0.002, 0.2),
+            noise: (0.004, 0.001),
+        }
+    }
+    /// The layout of a name: `standard`, `other`, `sparse` or `precise`.
     pub fn by_name(name: &str) -> Option<Self> {
         match name {
             "standard" => Some(Self::standard()),
             "other" => Some(Self::other()),
             "sparse" => Some(Self::sparse()),
+            "precise" => Some(Self::precise()),
             _ => None,
         }
     }
