@@ -26,7 +26,7 @@ const GRIDS: [(usize, usize); 6] = [
 
 /// The coarse grids of the second table, with the higher-order rules (`cells-ho`), against
 /// the same `cells` reference: the steady march under `Scheme::CellsHigher`.
-const HO_GRIDS: [(usize, usize); 8] = [
+const HO_GRIDS: [(usize, usize); 10] = [
     (10, 3),
     (20, 3),
     (20, 5),
@@ -34,6 +34,8 @@ const HO_GRIDS: [(usize, usize); 8] = [
     (80, 5),
     (40, 9),
     (80, 7),
+    (120, 7),
+    (160, 7),
     (80, 21),
 ];
 
