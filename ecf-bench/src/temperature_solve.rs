@@ -10,6 +10,7 @@
 //! exact, ...) of the transient cases on one thread: the ratio (cheaper / exact; ratios
 //! measured in one run survive a loaded machine), and each one's wall time / simulated time.
 use crate::accuracy::{cases, config, run_solve, Case, Kind, FN};
+use crate::median;
 use creep_core::engine::Scheme;
 use creep_core::thermal::TemperatureSolve;
 use creep_core::{Contact, Inputs};
@@ -51,11 +52,6 @@ fn diff(a: &[[f64; 3]], b: &[[f64; 3]]) -> [f64; 3] {
                 .fold(0.0, f64::max)
             / scale
     })
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 /// Every transient case: the accuracy benchmark's and the sines at 5 and 30 m/s.

@@ -139,7 +139,8 @@ pub struct Options {
     /// Convergence tolerance of the fits (`None`: the solver's default, as
     /// [`crate::fit::fit`]); [`FIT_TOLERANCE`] by default.
     pub fit_tolerance: Option<f64>,
-    /// Time bound of the search of formula forms, s (0: no search).
+    /// Time bound of the diagnosis, s from its start, which the search of formula forms
+    /// keeps ([`crate::search::SEARCH_SECONDS`]; 0: no search).
     pub search_seconds: f64,
     /// Run the model on a cheaper grid than the configuration's where the noise of the data
     /// allows it ([`loop_config`]); `false` keeps the configuration's grid and scheme.
@@ -251,6 +252,7 @@ pub fn diagnose_opts(
     o: &Options,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Diagnosis> {
+    let started = std::time::Instant::now();
     let noise = crate::noise::estimate(data);
     let looped = if o.loop_grid {
         loop_config(cfg, noise.as_ref().map(|n| n.cv_rmse_pct))
@@ -261,7 +263,7 @@ pub fn diagnose_opts(
         Some((c, why)) => (c, Some(why.clone())),
         None => (cfg, None),
     };
-    let mut d = run(run_cfg, data, noise, o, progress)?;
+    let mut d = run(run_cfg, data, noise, o, started, progress)?;
     d.model_grid = model_grid;
     if looped.is_some() {
         // the proposal keeps the user's grid and scheme
@@ -458,6 +460,7 @@ fn run(
     data: &Dataset,
     noise: Option<crate::noise::Noise>,
     o: &Options,
+    started: std::time::Instant,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Diagnosis> {
     let (threads, search_seconds) = (o.threads, o.search_seconds);
@@ -546,7 +549,7 @@ fn run(
             best_heldout,
             base_heldout,
             noise.as_ref().map(|n| n.cv_rmse_pct),
-            search_seconds,
+            started + std::time::Duration::from_secs_f64(search_seconds.min(1e9)),
             progress,
         )?;
         verdict += &search_words(
@@ -666,15 +669,20 @@ fn search_words(
     rows: usize,
 ) -> String {
     let c = &s.cost;
-    let bound = if c.shortlisted < crate::search::SHORTLIST.min(s.total) {
-        format!(
+    let mut bound = String::new();
+    if c.shortlisted < crate::search::SHORTLIST.min(s.total) {
+        bound += &format!(
             "; {} of the {} shortlisted fitted before the time bound of {search_seconds:.0} s",
             c.shortlisted,
             crate::search::SHORTLIST
-        )
-    } else {
-        String::new()
-    };
+        );
+    }
+    if c.finalists_cut > 0 {
+        bound += &format!(
+            "; {} finalist(s) left out for the time bound of {search_seconds:.0} s (a finer look: --threads on more cores, or a coarser --grid)",
+            c.finalists_cut
+        );
+    }
     let head = format!(
         " Search of formula forms: {} of {} screened on the factor each row needs, the best {} refitted on the folds with their own parameters and the target's level, the best {} of those with every free parameter, in {:.0} s{bound}.",
         s.tried, s.total, c.shortlisted, c.finalists, s.seconds

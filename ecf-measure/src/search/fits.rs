@@ -243,9 +243,14 @@ impl Searcher<'_> {
         let mean = self.test_mean(folds);
         let opts = self.fit_opts();
         let mut out = Vec::new();
+        let started = self.elapsed();
         for (done, &j) in list.iter().enumerate() {
-            if done > 0 && self.elapsed() > self.budget_s {
-                break;
+            // a further form only while the time left holds it and the finalists after it
+            if done > 0 {
+                let per_form = (self.elapsed() - started) / done as f64;
+                if self.left() < per_form * (1.0 + super::FINALIST_COST * FINALISTS as f64) {
+                    break;
+                }
             }
             let sc = &screened[j];
             let (p, v, t) = (sc.plan, &vars[sc.plan.var], groups[sc.plan.group]);
@@ -284,6 +289,8 @@ impl Searcher<'_> {
 
     /// The finalists fitted on the folds and on all rows with every free parameter (started
     /// from the shortlist's fits), side by side; the fit on all rows with standard errors.
+    /// A further finalist only while the time left holds the last one's time; with the
+    /// number of finalists left out for the time bound.
     pub(super) fn final_fits(
         &self,
         short: &[Shortlisted],
@@ -291,7 +298,7 @@ impl Searcher<'_> {
         screened: &[Screened],
         groups: &[Target],
         folds: &[Fold],
-    ) -> Vec<Final> {
+    ) -> (Vec<Final>, usize) {
         let mean = self.test_mean(folds);
         let opts = self.fit_opts();
         let all_opts = FitOptions {
@@ -300,7 +307,12 @@ impl Searcher<'_> {
         };
         let nf = folds.len();
         let mut out = Vec::new();
+        let mut last = 0.0;
         for (done, &j) in list.iter().enumerate() {
+            if done > 0 && self.left() < last {
+                return (out, list.len() - done);
+            }
+            let began = self.elapsed();
             let sh = &short[j];
             let t = groups[screened[sh.screened].plan.group];
             self.tick(
@@ -343,7 +355,8 @@ impl Searcher<'_> {
                     fit,
                 });
             }
+            last = self.elapsed() - began;
         }
-        out
+        (out, 0)
     }
 }

@@ -53,9 +53,15 @@ use creep_core::params::P;
 use inverse::Inverse;
 use shapes::{sig4, Shape, Var};
 
-/// Time bound of the search, s: every form is screened; the shortlist's fits stop starting
-/// new forms at the bound (the best screened form is always fitted, and the finalists are).
+/// Time bound of the diagnosis, s from its start: every form is screened; the shortlist's
+/// fits start a new form only while the time left holds it and the finalists' expected cost
+/// ([`FINALIST_COST`]), and a further finalist only while the time left holds the last
+/// one's (the best screened form and the best finalist are always fitted).
 pub const SEARCH_SECONDS: f64 = 50.0;
+
+/// A finalist's fits cost about this many shortlisted forms' (their model evaluations were
+/// 1.8-4.3 times one shortlisted form's in the sweeps of `scripts/loop-sweep.sh`).
+pub const FINALIST_COST: f64 = 3.0;
 
 /// How many of the best screened forms are fitted with the full model on the folds (with
 /// their own parameters and the target's level).
@@ -180,6 +186,8 @@ pub struct SearchCost {
     pub final_evaluations: usize,
     /// Finalists fitted.
     pub finalists: usize,
+    /// Finalists not fitted for the time bound.
+    pub finalists_cut: usize,
     /// Worker threads.
     pub threads: usize,
 }
@@ -319,7 +327,9 @@ struct Searcher<'a> {
     threads: usize,
     opts: &'a FitOptions<'a>,
     t0: std::time::Instant,
-    budget_s: f64,
+    /// When the time bound ends: [`SEARCH_SECONDS`] (or the caller's bound) after the
+    /// diagnosis began.
+    deadline: std::time::Instant,
     progress: &'a (dyn Fn(&str) + Sync),
 }
 
@@ -332,7 +342,7 @@ struct Screened {
 
 /// Searches the forms; `best_heldout` is the best held-out CV(RMSE) so far (%),
 /// `base_heldout` the configuration's own, `noise_cv` the data's noise level (%, when
-/// known), `budget_s` the time bound.
+/// known), `deadline` the end of the time bound.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn search(
     cfg: &Config,
@@ -345,7 +355,7 @@ pub(crate) fn search(
     best_heldout: f64,
     base_heldout: f64,
     noise_cv: Option<f64>,
-    budget_s: f64,
+    deadline: std::time::Instant,
     progress: &(dyn Fn(&str) + Sync),
 ) -> Result<Search> {
     let s = Searcher {
@@ -356,7 +366,7 @@ pub(crate) fn search(
         threads,
         opts,
         t0: std::time::Instant::now(),
-        budget_s,
+        deadline,
         progress,
     };
     let vars = variables(data, pred);
@@ -386,10 +396,11 @@ pub(crate) fn search(
     cost.shortlisted = short.len();
     let (t, e0) = (s.elapsed(), evaluated());
     let fin = fits::finalists(&short, &screened);
-    let finals = s.final_fits(&short, &fin, &screened, &groups, &folds);
+    let (finals, cut) = s.final_fits(&short, &fin, &screened, &groups, &folds);
     cost.final_s = s.elapsed() - t;
     cost.final_evaluations = evaluated() - e0;
     cost.finalists = finals.len();
+    cost.finalists_cut = cut;
     let base_resid = s.base_residuals(&folds, &inv[0]);
     let chosen = fits::choose(&finals, &short, &screened);
     let z: Vec<f64> = finals
@@ -514,6 +525,16 @@ impl<F: Fn(usize)> Drop for Ticker<'_, F> {
 impl Searcher<'_> {
     fn elapsed(&self) -> f64 {
         self.t0.elapsed().as_secs_f64()
+    }
+
+    /// Seconds left until the time bound ends (negative past it).
+    fn left(&self) -> f64 {
+        let now = std::time::Instant::now();
+        if now <= self.deadline {
+            (self.deadline - now).as_secs_f64()
+        } else {
+            -(now - self.deadline).as_secs_f64()
+        }
     }
 
     /// Reports a stage's progress as `STAGE [done/total]` (the command's progress bar reads
