@@ -299,7 +299,10 @@ def test_text_progress_bar_without_tqdm(monkeypatch, capsys):
 
 
 def test_ctrl_c_stops_a_long_curve():
-    # a curve of many points on a fine grid; SIGINT arrives while it runs without the GIL
+    # a curve of many points on a fine grid; SIGINT arrives while it runs without the GIL.
+    # Python's own Ctrl-C handler is set here: a process started as a background job of a
+    # shell inherits SIGINT ignored, and Python then installs none
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
     timer.start()
     try:
@@ -307,6 +310,7 @@ def test_ctrl_c_stops_a_long_curve():
             ecf.curve(cx=np.linspace(0.001, 0.3, 100000), preset="dry", grid="80x21")
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
 
 
 def test_long_calls_release_the_gil():
