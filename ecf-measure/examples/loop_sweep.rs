@@ -47,6 +47,24 @@ fn cpu_seconds() -> f64 {
         .unwrap_or(f64::NAN)
 }
 
+/// [`hidden::file_in`], also written as `name` into `write` when given (the file made once).
+#[allow(clippy::too_many_arguments)]
+fn file(
+    layout: &hidden::Layout,
+    truth: &creep_core::Config,
+    column: Option<(&str, f64, f64)>,
+    distractor: bool,
+    seed: u64,
+    write: &Option<String>,
+    name: &str,
+) -> (ecf_measure::measure::Dataset, Vec<f64>) {
+    let (csv, clean) = hidden::csv_text_in(layout, truth, column, distractor, seed);
+    if let Some(dir) = write {
+        std::fs::write(std::path::Path::new(dir).join(name), &csv).expect("write");
+    }
+    (hidden::dataset(&csv), clean)
+}
+
 fn run(
     cfg: &creep_core::Config,
     data: &ecf_measure::measure::Dataset,
@@ -146,13 +164,18 @@ fn main() {
         }
         for seed in 1..=seeds {
             let truth = hidden::truth(c.preset, c.target, Some(c.factor));
-            let (data, clean) =
-                hidden::file_in(&layout, &truth, c.column, c.distractor, 1000 + seed);
+            let name = format!("{}-{seed}.csv", c.name);
+            let (data, clean) = file(
+                &layout,
+                &truth,
+                c.column,
+                c.distractor,
+                1000 + seed,
+                &write,
+                &name,
+            );
             if let Some(dir) = &write {
-                let (csv, _) =
-                    hidden::csv_text_in(&layout, &truth, c.column, c.distractor, 1000 + seed);
-                let path = std::path::Path::new(dir).join(format!("{}-{seed}.csv", c.name));
-                std::fs::write(&path, csv).expect("write");
+                let path = std::path::Path::new(dir).join(&name);
                 std::fs::write(
                     path.with_extension("truth.json"),
                     truth.to_json().to_string(),
@@ -211,14 +234,16 @@ fn main() {
         for seed in 1..=nulls {
             let truth = hidden::truth(preset, "tau_c1", None);
             let column = (seed % 2 == 0).then_some(("humidity", 20.0, 80.0));
-            let (data, clean) =
-                hidden::file_in(&layout, &truth, column, seed % 3 == 0, 2000 + seed);
-            if let Some(dir) = &write {
-                let (csv, _) =
-                    hidden::csv_text_in(&layout, &truth, column, seed % 3 == 0, 2000 + seed);
-                let path = std::path::Path::new(dir).join(format!("null-{preset}-{seed}.csv"));
-                std::fs::write(&path, csv).expect("write");
-            }
+            let name = format!("null-{preset}-{seed}.csv");
+            let (data, clean) = file(
+                &layout,
+                &truth,
+                column,
+                seed % 3 == 0,
+                2000 + seed,
+                &write,
+                &name,
+            );
             let cfg = creep_core::Config::preset(preset).expect("preset");
             let o = run(&cfg, &data, &clean, threads);
             if let Some(p) = &o.proposed {

@@ -527,14 +527,11 @@ impl Searcher<'_> {
         self.t0.elapsed().as_secs_f64()
     }
 
-    /// Seconds left until the time bound ends (negative past it).
+    /// Seconds left until the time bound ends (0 past it).
     fn left(&self) -> f64 {
-        let now = std::time::Instant::now();
-        if now <= self.deadline {
-            (self.deadline - now).as_secs_f64()
-        } else {
-            -(now - self.deadline).as_secs_f64()
-        }
+        self.deadline
+            .saturating_duration_since(std::time::Instant::now())
+            .as_secs_f64()
     }
 
     /// Reports a stage's progress as `STAGE [done/total]` (the command's progress bar reads

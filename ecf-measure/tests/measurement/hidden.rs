@@ -269,8 +269,12 @@ pub fn file_in(
     seed: u64,
 ) -> (Dataset, Vec<f64>) {
     let (csv, clean) = csv_text_in(layout, truth, column, distractor, seed);
-    let d = Dataset::from_csv_str(&csv, "unseen.csv", &Defaults::default()).expect("file");
-    (d, clean)
+    (dataset(&csv), clean)
+}
+
+/// A file's CSV text read as a user's file would be.
+pub fn dataset(csv: &str) -> Dataset {
+    Dataset::from_csv_str(csv, "unseen.csv", &Defaults::default()).expect("file")
 }
 
 /// [`file`] as CSV text, with the noise-free values.
