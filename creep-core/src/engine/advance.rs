@@ -61,6 +61,9 @@ impl Mover<'_> {
             for slot in skip..inside.min(end) {
                 let xi = self.lat.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
+                if !sp.owns(id) {
+                    continue;
+                }
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
                 // the move's start node (higher-order rules): lattice node `slot`, cached
                 // except at the leading edge
@@ -77,6 +80,9 @@ impl Mover<'_> {
             for slot in skip..inside.min(end) {
                 let xi = self.lat.ell[j] - (slot as f64 + phase_end) * dxi;
                 let id = sp.slot(slot);
+                if !sp.owns(id) {
+                    continue;
+                }
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
                 let np0 = (from_nodes && slot > 0).then(|| &sp.nodes[slot]);
                 self.move_bristle(j, xi, np0, kin, &fac, s, ac);
@@ -395,31 +401,41 @@ impl Mover<'_> {
         let hot = self.law.r.on.temperature;
         self.lattice_nodes(j, sp.nodes, sp.nodes_p0);
         let nodes = &*sp.nodes;
+        // where the strip's bristles are shared among threads, the march goes as far as this
+        // thread's last bristle
+        let count = (0..count)
+            .rev()
+            .find(|&k| sp.owns(sp.slot(k)))
+            .map_or(0, |k| k + 1);
         for k in 0..count {
             let id = sp.slot(k);
-            // the state at its last node (whole-cell commit)
-            sp.node_st[id] = s;
-            sp.node_acc[id] = acc;
-            // slot nx is past the trailing edge once the phase is > 0: not moved (as in the loop)
-            if d_end > 0.0 && k < self.lat.nx {
-                let (mut ps, mut pacc) = (s, acc);
-                self.move_bristle(
-                    j,
-                    self.lat.ell[j] - (k as f64 + phase_end) * dxi,
-                    (self.law.start_cache && k > 0).then(|| &nodes[k]),
-                    &kin_part,
-                    &fac_part,
-                    &mut ps,
-                    &mut pacc,
-                );
-                sp.st[id] = ps;
-                if hot {
-                    sp.acc[id] = pacc;
-                }
-            } else {
-                sp.st[id] = s;
-                if hot {
-                    sp.acc[id] = acc;
+            // a bristle of another thread's share: only the march's own state goes on
+            if sp.owns(id) {
+                // the state at its last node (whole-cell commit)
+                sp.node_st[id] = s;
+                sp.node_acc[id] = acc;
+                // slot nx is past the trailing edge once the phase is > 0: not moved (as in
+                // the loop)
+                if d_end > 0.0 && k < self.lat.nx {
+                    let (mut ps, mut pacc) = (s, acc);
+                    self.move_bristle(
+                        j,
+                        self.lat.ell[j] - (k as f64 + phase_end) * dxi,
+                        (self.law.start_cache && k > 0).then(|| &nodes[k]),
+                        &kin_part,
+                        &fac_part,
+                        &mut ps,
+                        &mut pacc,
+                    );
+                    sp.st[id] = ps;
+                    if hot {
+                        sp.acc[id] = pacc;
+                    }
+                } else {
+                    sp.st[id] = s;
+                    if hot {
+                        sp.acc[id] = acc;
+                    }
                 }
             }
             if k + 1 < count {
@@ -464,7 +480,10 @@ impl Mover<'_> {
             ..BristleState::default()
         };
         for k in 0..count {
-            sp.st[(*sp.head + k) % (nx + 1)] = s;
+            let id = sp.slot(k);
+            if sp.owns(id) {
+                sp.st[id] = s;
+            }
             if k + 1 >= count {
                 break;
             }
@@ -507,11 +526,13 @@ impl Mover<'_> {
         let nx1 = self.lat.nx + 1;
         *sp.head = (*sp.head + self.lat.nx) % nx1;
         let id = sp.slot(0);
-        sp.st[id] = BristleState {
-            temp: self.inputs.t_bulk,
-            ..BristleState::default()
-        };
-        sp.acc[id] = [0.0; N_KERNEL];
+        if sp.owns(id) {
+            sp.st[id] = BristleState {
+                temp: self.inputs.t_bulk,
+                ..BristleState::default()
+            };
+            sp.acc[id] = [0.0; N_KERNEL];
+        }
         *sp.phase = 0.0;
         *sp.part = super::Partial::default();
     }
@@ -604,6 +625,9 @@ impl Mover<'_> {
                 }
                 let xi0 = self.lat.ell[j] - (slot as f64 + ph0) * dxi;
                 let id = sp.slot(slot);
+                if !sp.owns(id) {
+                    continue;
+                }
                 let (s, ac) = (&mut sp.st[id], &mut sp.acc[id]);
                 for i in 1..=n_sub {
                     let xi_end = xi0 - i as f64 * d / a;

@@ -20,14 +20,15 @@
 //! lattice (`law::Lattice`, the grid's geometry), the grid state (`grid_state`: exactly
 //! what is saved and restored, with its byte layout; module [`crate::state`] frames it) and
 //! per strip its scratch (`strip::StripScratch`); besides them the Hertz patch of the
-//! current load, FASTSIM's steady-march caches, the strip symmetry flags, the warnings and
-//! the thread pool. A bristle move is a method of `law::Mover` (law, lattice, the step's
+//! current load, FASTSIM's steady-march caches, the strip symmetry flags, the warnings,
+//! the thread pool and how a shared strip is split among its threads. A bristle move is a method of `law::Mover` (law, lattice, the step's
 //! kinematics) on one strip's state (`strip::Strip`), nothing else.
 //!
 //! Where each job lives: this file holds the contact and the time loop (`step`, `steady`);
 //! [`io`] the inputs and outputs; `strip` one strip as a unit of work (its state borrowed
 //! out of the contact, the strips of a step on `threads` threads) and the cell-by-cell
-//! scheme; `advance` one bristle move, the sub-step loop and march; `bristle_move` the
+//! scheme; `share` one strip's bristles split among the threads (coarse grids); `pool` the
+//! threads; `advance` one bristle move, the sub-step loop and march; `bristle_move` the
 //! general move's temperature solve; `kin` a sub-step's kinematics; `grid` the integrals and
 //! fields; `modifiers` the formula and custom effects; `softening` the temperature solve of
 //! a layer that only softens as it heats (on the law's branch as a scalar function of T);
@@ -44,6 +45,8 @@ pub mod io;
 mod kin;
 mod law;
 mod modifiers;
+mod pool;
+mod share;
 mod softening;
 mod steady_coulomb;
 mod strip;
@@ -124,7 +127,9 @@ pub struct Contact {
     /// Whether symmetric strips are computed once (module `strip`).
     sym: Symmetry,
     /// Threads that advance the strips (None: the calling thread alone).
-    pool: Option<std::sync::Arc<rayon::ThreadPool>>,
+    pool: Option<std::sync::Arc<pool::Pool>>,
+    /// How a step's bristles are shared among those threads (module `strip`).
+    balance: share::Balance,
 }
 
 impl Contact {
@@ -161,6 +166,7 @@ impl Contact {
             coulomb: CoulombScratch::new(),
             sym: Symmetry::new(),
             pool: None,
+            balance: share::Balance::default(),
         };
         for path in FastPath::ALL {
             c.set_fast_path(path, true);
@@ -361,7 +367,7 @@ impl Contact {
         } else if self.law.scheme == Scheme::Continuous {
             self.each_strip(|c, sp| c.advance_continuous(sp, dt));
         } else {
-            self.each_strip(|c, sp| c.advance_cells(sp, dt));
+            self.each_strip_shared(dt, |c, sp| c.advance_cells(sp, dt));
         }
         self.state.run.time += dt;
         self.state.run.out = self.integrate();

@@ -5,7 +5,6 @@ use super::Contact;
 use crate::bristle::BristleState;
 use crate::material::NodeP;
 use crate::thermal::{StepFactors, N_KERNEL};
-use rayon::prelude::*;
 
 /// The caches of one strip's moves, kept from step to step (each strip owns its own, so
 /// strips share no mutable state).
@@ -17,6 +16,8 @@ pub(super) struct StripScratch {
     pub nodes_p0: f64,
     /// Kernel factors of recent sub-step lengths (h, factors).
     pub fac: Vec<(f64, StepFactors)>,
+    /// A thread's own copies of the strip's bristles where they are shared among threads.
+    pub own: super::share::Private,
 }
 
 impl StripScratch {
@@ -26,6 +27,7 @@ impl StripScratch {
             nodes: Vec::new(),
             nodes_p0: f64::NAN,
             fac: Vec::new(),
+            own: super::share::Private::default(),
         }
     }
 }
@@ -62,6 +64,10 @@ impl Symmetry {
 pub(super) struct Strip<'a> {
     /// Strip index.
     pub j: usize,
+    /// Where the strip's bristles are shared among threads: which thread moves each
+    /// (storage index), and which thread this is. The arrays are then this thread's copies,
+    /// current for its own bristles only ([`Strip::owns`]).
+    pub owner: Option<(&'a [u8], u8)>,
     /// Its `nx + 1` bristles (ring buffer, see `slot`).
     pub st: &'a mut [BristleState],
     /// Their heat-kernel accumulators.
@@ -90,6 +96,13 @@ impl Strip<'_> {
     pub fn slot(&self, slot: usize) -> usize {
         (*self.head + slot) % self.st.len()
     }
+
+    /// True if this thread moves bristle `id` (storage index): every bristle unless the
+    /// strip's bristles are shared among threads.
+    #[inline]
+    pub fn owns(&self, id: usize) -> bool {
+        self.owner.is_none_or(|(o, me)| o[id] == me)
+    }
 }
 
 impl Contact {
@@ -112,71 +125,41 @@ impl Contact {
         self.settle_mirrored();
         // `f` may write the node accumulators
         self.coulomb.node_acc_zero = false;
-        let sym = self.sym.mirrored
-            && self.lat.ny > 1
-            && !self.load.patch.line
-            && self.state.run.inputs.spin == 0.0;
-        self.sym.mirrored = sym;
-        let mirror = sym && self.sym.on;
+        let mirror = self.mirror_now();
         let computed = if mirror {
             self.lat.ny.div_ceil(2)
         } else {
             self.lat.ny
         };
         let nx1 = self.lat.nx + 1;
-        let mut st = std::mem::take(&mut self.state.st);
-        let mut acc = std::mem::take(&mut self.state.acc);
-        let mut node_st = std::mem::take(&mut self.state.node_st);
-        let mut node_acc = std::mem::take(&mut self.state.node_acc);
-        let mut part = std::mem::take(&mut self.state.part);
-        let mut head = std::mem::take(&mut self.state.head);
-        let mut phase = std::mem::take(&mut self.state.phase);
-        let mut scratch = std::mem::take(&mut self.scratch);
+        let mut t = Taken::from(self);
         {
             let this = self.mover();
-            let mut strips: Vec<Strip> = st
-                .chunks_mut(nx1)
-                .zip(acc.chunks_mut(nx1))
-                .zip(head.iter_mut().zip(phase.iter_mut()))
-                .zip(scratch.iter_mut())
-                .zip(node_st.chunks_mut(nx1).zip(node_acc.chunks_mut(nx1)))
-                .zip(part.iter_mut())
-                .enumerate()
-                .map(
-                    |(j, (((((st, acc), (head, phase)), sc), (node_st, node_acc)), part))| Strip {
-                        j,
-                        st,
-                        acc,
-                        node_st,
-                        node_acc,
-                        part,
-                        head,
-                        phase,
-                        nodes: &mut sc.nodes,
-                        nodes_p0: &mut sc.nodes_p0,
-                        fac: &mut sc.fac,
-                    },
-                )
-                .take(computed)
-                .collect();
+            let mut strips: Vec<Strip> =
+                t.st.chunks_mut(nx1)
+                    .zip(t.acc.chunks_mut(nx1))
+                    .zip(t.node_st.chunks_mut(nx1).zip(t.node_acc.chunks_mut(nx1)))
+                    .zip(
+                        t.head
+                            .iter_mut()
+                            .zip(t.phase.iter_mut())
+                            .zip(t.part.iter_mut()),
+                    )
+                    .zip(t.scratch.iter_mut())
+                    .enumerate()
+                    .map(
+                        |(j, ((((st, acc), (node_st, node_acc)), ((head, phase), part)), sc))| {
+                            Strip::whole(j, (st, acc, node_st, node_acc), (head, phase, part), sc)
+                        },
+                    )
+                    .take(computed)
+                    .collect();
             match &self.pool {
-                Some(pool) if strips.len() > 1 => pool.install(|| {
-                    strips
-                        .par_iter_mut()
-                        .with_max_len(1)
-                        .for_each(|sp| f(&this, sp))
-                }),
+                Some(pool) if strips.len() > 1 => pool.run(&mut strips, |sp| f(&this, sp)),
                 _ => strips.iter_mut().for_each(|sp| f(&this, sp)),
             }
         }
-        self.state.st = st;
-        self.state.acc = acc;
-        self.state.node_st = node_st;
-        self.state.node_acc = node_acc;
-        self.state.part = part;
-        self.state.head = head;
-        self.state.phase = phase;
-        self.scratch = scratch;
+        t.put_back(self);
         if mirror {
             self.copy_to_mirror_strips();
         }
@@ -185,7 +168,7 @@ impl Contact {
     /// Copies the state of each strip j < ny / 2 onto its mirror image ny - 1 - j (bristles,
     /// accumulators, node states, part of the cell, ring-buffer head and phase; the caches
     /// refill themselves).
-    fn copy_to_mirror_strips(&mut self) {
+    pub(super) fn copy_to_mirror_strips(&mut self) {
         let (ny, nx1) = (self.lat.ny, self.lat.nx + 1);
         for j in 0..ny / 2 {
             let m = ny - 1 - j;
@@ -198,6 +181,17 @@ impl Contact {
             self.state.head[m] = self.state.head[j];
             self.state.phase[m] = self.state.phase[j];
         }
+    }
+
+    /// Whether this step computes one of each pair of mirror-image strips (they are mirror
+    /// images and the inputs symmetric; see [`Self::each_strip`]).
+    pub(super) fn mirror_now(&mut self) -> bool {
+        let sym = self.sym.mirrored
+            && self.lat.ny > 1
+            && !self.load.patch.line
+            && self.state.run.inputs.spin == 0.0;
+        self.sym.mirrored = sym;
+        sym && self.sym.on
     }
 
     /// Sets whether the strips are mirror images of each other (known now).
@@ -269,12 +263,13 @@ impl Contact {
         self.pool = if threads <= 1 {
             None
         } else {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .map_err(|e| crate::CreepError::Config {
-                    source_name: "threads".into(),
-                    message: format!("cannot start {threads} threads: {e}"),
+            // the pool panics where the system refuses a thread
+            let pool =
+                std::panic::catch_unwind(|| super::pool::Pool::new(threads)).map_err(|_| {
+                    crate::CreepError::Config {
+                        source_name: "threads".into(),
+                        message: format!("cannot start {threads} threads"),
+                    }
                 })?;
             Some(std::sync::Arc::new(pool))
         };
@@ -283,8 +278,105 @@ impl Contact {
 
     /// Threads that advance the strips.
     pub fn threads(&self) -> usize {
-        self.pool.as_ref().map_or(1, |p| p.current_num_threads())
+        self.pool.as_ref().map_or(1, |p| p.threads())
     }
+}
+
+/// The grid state's per-strip vectors and the strips' caches, moved out of the contact for
+/// a step (the rest of it stays readable through a [`Mover`]).
+pub(super) struct Taken {
+    pub st: Vec<BristleState>,
+    pub acc: Vec<[f64; N_KERNEL]>,
+    pub node_st: Vec<BristleState>,
+    pub node_acc: Vec<[f64; N_KERNEL]>,
+    pub part: Vec<super::Partial>,
+    pub head: Vec<usize>,
+    pub phase: Vec<f64>,
+    pub scratch: Vec<StripScratch>,
+}
+
+impl Taken {
+    /// Moves them out of `c`.
+    pub(super) fn from(c: &mut Contact) -> Self {
+        Taken {
+            st: std::mem::take(&mut c.state.st),
+            acc: std::mem::take(&mut c.state.acc),
+            node_st: std::mem::take(&mut c.state.node_st),
+            node_acc: std::mem::take(&mut c.state.node_acc),
+            part: std::mem::take(&mut c.state.part),
+            head: std::mem::take(&mut c.state.head),
+            phase: std::mem::take(&mut c.state.phase),
+            scratch: std::mem::take(&mut c.scratch),
+        }
+    }
+
+    /// Moves them back into `c`.
+    pub(super) fn put_back(self, c: &mut Contact) {
+        c.state.st = self.st;
+        c.state.acc = self.acc;
+        c.state.node_st = self.node_st;
+        c.state.node_acc = self.node_acc;
+        c.state.part = self.part;
+        c.state.head = self.head;
+        c.state.phase = self.phase;
+        c.scratch = self.scratch;
+    }
+}
+
+/// A strip's per-bristle arrays: states, accumulators, node states, node accumulators.
+pub(super) type Arrays<'a> = (
+    &'a mut [BristleState],
+    &'a mut [[f64; N_KERNEL]],
+    &'a mut [BristleState],
+    &'a mut [[f64; N_KERNEL]],
+);
+
+/// A strip's ring bookkeeping: head, phase, part of the cell.
+pub(super) type Ring<'a> = (&'a mut usize, &'a mut f64, &'a mut super::Partial);
+
+impl<'a> Strip<'a> {
+    /// Strip `j` advanced whole by one thread.
+    pub(super) fn whole(
+        j: usize,
+        arrays: Arrays<'a>,
+        ring: Ring<'a>,
+        sc: &'a mut StripScratch,
+    ) -> Self {
+        let (st, acc, node_st, node_acc) = arrays;
+        let (head, phase, part) = ring;
+        Strip {
+            j,
+            owner: None,
+            st,
+            acc,
+            node_st,
+            node_acc,
+            part,
+            head,
+            phase,
+            nodes: &mut sc.nodes,
+            nodes_p0: &mut sc.nodes_p0,
+            fac: &mut sc.fac,
+        }
+    }
+}
+
+/// Bristles that enter a strip while it rolls `dist` (m) from `phase` on cells of `dx` (m):
+/// the count [`Mover::advance_cells`] makes (for `dist` < 2a, at most nx + 1 loops).
+pub(super) fn entries(dist: f64, phase: f64, dx: f64) -> usize {
+    let tol = 1e-9 * dx;
+    let (mut rem, mut ph, mut w) = (dist, phase, 0usize);
+    while rem > tol {
+        let to_next = (1.0 - ph) * dx;
+        if rem >= to_next - tol {
+            w += 1;
+            rem -= to_next;
+            ph = 0.0;
+        } else {
+            rem = 0.0;
+        }
+    }
+    w
 }
 
 impl Strip<'_> {
@@ -368,20 +460,7 @@ impl Mover<'_> {
         let mut d_end = 0.0;
         // Bristles that will leave before the end of the step need no update at all: count
         // this step's entries first (same arithmetic as the loop below).
-        let wraps = {
-            let (mut rem, mut ph, mut w) = (remaining, *sp.phase, 0usize);
-            while rem > tol {
-                let to_next = (1.0 - ph) * dx;
-                if rem >= to_next - tol {
-                    w += 1;
-                    rem -= to_next;
-                    ph = 0.0;
-                } else {
-                    rem = 0.0;
-                }
-            }
-            w
-        };
+        let wraps = entries(remaining, *sp.phase, dx);
         while remaining > tol {
             let to_next = (1.0 - *sp.phase) * dx;
             if remaining >= to_next - tol {
