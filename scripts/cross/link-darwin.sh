@@ -18,6 +18,8 @@ while [ $# -gt 0 ]; do
       args+=("$1" "$2.fmi2"); found=1; shift 2 ;;
     -install_name) shift 2 ;;   # replaced below
     -lc|-lm) shift ;;           # both are libSystem on macOS
+    -liconv) shift ;;           # the libc crate names it; nothing here calls iconv (a call
+                                # would fail the link), and the minimal SDK has no stub
     -flavor) shift 2 ;;         # rustc names the flavour; ld64.lld knows its own
     *) args+=("$1"); shift ;;
   esac
