@@ -33,7 +33,21 @@ pub(super) struct Balance {
     /// Smoothed time each strip took to advance (all threads' shares summed), s, per strip
     /// index (0: not measured yet).
     cost: Vec<f64>,
+    /// Smoothed work of a step's strips (the threads' times summed), s (0: not measured).
+    work: f64,
+    /// The steps run on one thread: too little work to hand out ([`SERIAL_BELOW`]).
+    serial: bool,
 }
+
+/// A step whose strips take less than this (s, smoothed) runs on the calling thread alone:
+/// handing out the work, the shared strip's copies and its bookkeeping done twice cost
+/// about 2-4 us, which made two threads slower than one on 6 x 3 at 5 m/s with 0.1 ms steps
+/// (about 7 us of work: 1.11x) and faster from about 10 us (10 x 3 at 20 m/s, 0.05 ms steps,
+/// 14 us: 0.90x; 10 x 3 at 5 m/s, 1 ms, 23 us: 0.71x).
+const SERIAL_BELOW: f64 = 10e-6;
+/// ... and on the threads again above this (s; apart from [`SERIAL_BELOW`] so that work near
+/// the bound does not switch back and forth).
+const PARALLEL_ABOVE: f64 = 13e-6;
 
 /// Smoothing factor of the threads' times (the weight of the newest step).
 const BALANCE_EMA: f64 = 0.2;
@@ -46,6 +60,29 @@ impl Balance {
         if self.weights.len() != threads {
             self.weights = vec![1.0 / threads as f64; threads];
             self.busy.clear();
+        }
+    }
+
+    /// Whether the next step's strips go to the threads (else to the calling thread alone).
+    pub(super) fn parallel(&self) -> bool {
+        self.fixed || !self.serial
+    }
+
+    /// Adds the last step's work (s, the threads' times summed) to its smoothed value and
+    /// decides whether the next steps use the threads.
+    pub(super) fn learn_work(&mut self, work: f64) {
+        if work.is_nan() || work <= 0.0 {
+            return;
+        }
+        self.work = if self.work > 0.0 {
+            self.work + BALANCE_EMA * (work - self.work)
+        } else {
+            work
+        };
+        if self.serial && self.work > PARALLEL_ABOVE {
+            self.serial = false;
+        } else if !self.serial && self.work < SERIAL_BELOW {
+            self.serial = true;
         }
     }
 
@@ -142,7 +179,11 @@ impl Contact {
     /// `shared_strips_do_not_depend_on_the_share`).
     pub(super) fn each_strip_shared(&mut self, dt: f64, f: impl Fn(&Mover, &mut Strip) + Sync) {
         let threads = self.threads().min(MAX_SHARED);
-        let Some(pool) = self.pool.clone().filter(|_| threads > 1) else {
+        let Some(pool) = self
+            .pool
+            .clone()
+            .filter(|_| threads > 1 && self.balance.parallel())
+        else {
             return self.each_strip(f);
         };
         self.settle_mirrored();
@@ -244,6 +285,7 @@ impl Contact {
         );
         self.balance.owners = owners;
         self.balance.learn(&busy[..threads]);
+        self.balance.learn_work(busy[..threads].iter().sum());
         t.put_back(self);
         if mirror {
             self.copy_to_mirror_strips();
@@ -294,7 +336,8 @@ impl Contact {
     }
 
     /// Fixes how [`Self::each_strip_shared`] shares the bristles among threads (weights per
-    /// thread, normalized), or lets it adapt them again (None). For tests.
+    /// thread, normalized) and keeps every step on the threads however little its work, or
+    /// lets both adapt again (None). For tests.
     #[doc(hidden)]
     pub fn set_share_weights(&mut self, weights: Option<Vec<f64>>) {
         match weights {
@@ -489,6 +532,29 @@ mod tests {
         let w = b.weights.clone();
         b.learn(&[1e-5, 5e-5]);
         assert_eq!(w, b.weights);
+    }
+
+    #[test]
+    fn little_work_runs_on_one_thread_with_a_margin_against_switching() {
+        let mut b = Balance::default();
+        assert!(b.parallel());
+        for _ in 0..20 {
+            b.learn_work(7e-6);
+        }
+        assert!(!b.parallel());
+        // between the bounds: stays as it is
+        for _ in 0..20 {
+            b.learn_work(11.5e-6);
+        }
+        assert!(!b.parallel());
+        for _ in 0..20 {
+            b.learn_work(20e-6);
+        }
+        assert!(b.parallel());
+        for _ in 0..20 {
+            b.learn_work(11.5e-6);
+        }
+        assert!(b.parallel());
     }
 
     #[test]

@@ -154,10 +154,25 @@ impl Contact {
                     )
                     .take(computed)
                     .collect();
-            match &self.pool {
-                Some(pool) if strips.len() > 1 => pool.run(&mut strips, |sp| f(&this, sp)),
-                _ => strips.iter_mut().for_each(|sp| f(&this, sp)),
-            }
+            let t0 = std::time::Instant::now();
+            let parallel = self.balance.parallel();
+            let work = match &self.pool {
+                Some(pool) if strips.len() > 1 && parallel => {
+                    let mut timed: Vec<(Strip, f64)> =
+                        strips.into_iter().map(|s| (s, 0.0)).collect();
+                    pool.run(&mut timed, |(sp, busy)| {
+                        let ts = std::time::Instant::now();
+                        f(&this, sp);
+                        *busy = ts.elapsed().as_secs_f64();
+                    });
+                    timed.iter().map(|(_, b)| b).sum()
+                }
+                _ => {
+                    strips.iter_mut().for_each(|sp| f(&this, sp));
+                    t0.elapsed().as_secs_f64()
+                }
+            };
+            self.balance.learn_work(work);
         }
         t.put_back(self);
         if mirror {
