@@ -27,8 +27,8 @@
 //! Where each job lives: this file holds the contact and the time loop (`step`, `steady`);
 //! [`io`] the inputs and outputs; `strip` one strip as a unit of work (its state borrowed
 //! out of the contact, the strips of a step on `threads` threads) and the cell-by-cell
-//! scheme; `share` one strip's bristles split among the threads (coarse grids); `pool` the
-//! threads; `advance` one bristle move, the sub-step loop and march; `bristle_move` the
+//! scheme; `share` one strip's bristles split among the threads (cell-by-cell schemes);
+//! `pool` the threads; `advance` one bristle move, the sub-step loop and march; `bristle_move` the
 //! general move's temperature solve; `kin` a sub-step's kinematics; `grid` the integrals and
 //! fields; `modifiers` the formula and custom effects; `softening` the temperature solve of
 //! a layer that only softens as it heats (on the law's branch as a scalar function of T);
@@ -128,7 +128,7 @@ pub struct Contact {
     sym: Symmetry,
     /// Threads that advance the strips (None: the calling thread alone).
     pool: Option<std::sync::Arc<pool::Pool>>,
-    /// How a step's bristles are shared among those threads (module `strip`).
+    /// How a step's bristles are shared among those threads (module `share`).
     balance: share::Balance,
 }
 
@@ -473,6 +473,13 @@ impl Contact {
         self.coulomb.node_acc_zero = false;
         self.set_mirrored(self.strips_equal());
         Ok(())
+    }
+
+    /// Half-lengths l_j = sqrt(1 - eta_j^2) of the strips (normalized by a), strip by strip:
+    /// a strip's cell is 2 l_j a / nx long. For tests that end steps on a lattice node.
+    #[doc(hidden)]
+    pub fn strip_half_lengths(&self) -> Vec<f64> {
+        self.lat.ell.clone()
     }
 
     /// Switches the march of newly entered bristles off (plain sub-step loop for every

@@ -236,11 +236,14 @@ impl Contact {
                     caches.iter_mut().filter_map(|c| c.next()).collect();
                 let arrays = (st, acc, node_st, node_acc);
                 if let Some(r) = assign[j] {
-                    let Some(sc) = sc.drain(..).next() else { break };
+                    let sc = sc.drain(..).next().expect("a cache per strip and thread");
                     let strip = Strip::whole(j, arrays, (head, phase, part), sc);
                     work[r].strips.push(strip);
                 } else {
-                    let s = shared.iter().position(|&k| k == j).unwrap_or(0);
+                    let s = shared
+                        .iter()
+                        .position(|&k| k == j)
+                        .expect("a strip not given whole is shared");
                     let owner = &owners[s * n..(s + 1) * n];
                     share_strip(
                         &mut work,
@@ -376,24 +379,22 @@ impl Work<'_> {
     /// The thread's bristles from the grid state into its copies.
     fn copy_in(&mut self) {
         for b in self.bristles.iter() {
-            if let Some(sp) = self.strips.get_mut(b.strip) {
-                sp.st[b.id] = *b.st;
-                sp.acc[b.id] = *b.acc;
-                sp.node_st[b.id] = *b.node_st;
-                sp.node_acc[b.id] = *b.node_acc;
-            }
+            let sp = &mut self.strips[b.strip];
+            sp.st[b.id] = *b.st;
+            sp.acc[b.id] = *b.acc;
+            sp.node_st[b.id] = *b.node_st;
+            sp.node_acc[b.id] = *b.node_acc;
         }
     }
 
     /// The thread's bristles back into the grid state.
     fn copy_out(&mut self) {
         for b in self.bristles.iter_mut() {
-            if let Some(sp) = self.strips.get(b.strip) {
-                *b.st = sp.st[b.id];
-                *b.acc = sp.acc[b.id];
-                *b.node_st = sp.node_st[b.id];
-                *b.node_acc = sp.node_acc[b.id];
-            }
+            let sp = &self.strips[b.strip];
+            *b.st = sp.st[b.id];
+            *b.acc = sp.acc[b.id];
+            *b.node_st = sp.node_st[b.id];
+            *b.node_acc = sp.node_acc[b.id];
         }
     }
 }
@@ -431,10 +432,12 @@ fn share_strip<'a>(
     for ((r, w), sc) in work.iter_mut().enumerate().zip(sc) {
         let (head, phase, part) = match ring.take() {
             Some(own) => own,
-            None => match copies.next() {
-                Some((h, p, q)) => (h, p, q),
-                None => break,
-            },
+            None => {
+                let (h, p, q) = copies
+                    .next()
+                    .expect("a copy of the ring per shared strip and thread");
+                (h, p, q)
+            }
         };
         let StripScratch {
             nodes,

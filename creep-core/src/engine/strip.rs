@@ -6,8 +6,8 @@ use crate::bristle::BristleState;
 use crate::material::NodeP;
 use crate::thermal::{StepFactors, N_KERNEL};
 
-/// The caches of one strip's moves, kept from step to step (each strip owns its own, so
-/// strips share no mutable state).
+/// The caches of one strip's moves, kept from step to step (one per strip and thread, so
+/// strips and threads share no mutable state).
 #[derive(Clone, Debug, Default)]
 pub(super) struct StripScratch {
     /// Pressure parts of the lattice nodes, for the peak pressure `nodes_p0`.
@@ -377,7 +377,7 @@ impl<'a> Strip<'a> {
 }
 
 /// Bristles that enter a strip while it rolls `dist` (m) from `phase` on cells of `dx` (m):
-/// the count [`Mover::advance_cells`] makes (for `dist` < 2a, at most nx + 1 loops).
+/// the count [`Mover::advance_cells`] makes (for `dist` < 2a, about nx / l_j loops).
 pub(super) fn entries(dist: f64, phase: f64, dx: f64) -> usize {
     let tol = 1e-9 * dx;
     let (mut rem, mut ph, mut w) = (dist, phase, 0usize);
