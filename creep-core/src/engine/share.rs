@@ -186,12 +186,8 @@ impl Contact {
         else {
             return self.each_strip(f);
         };
-        self.settle_mirrored();
-        // `f` may write the node accumulators
-        self.coulomb.node_acc_zero = false;
-        let mirror = self.mirror_now();
+        let (mirror, computed) = self.begin_strips();
         let ny = self.lat.ny;
-        let computed = if mirror { ny.div_ceil(2) } else { ny };
         let n = self.lat.nx + 1;
         if self.scratch.len() < ny * threads {
             self.scratch.resize(ny * threads, StripScratch::new());
@@ -217,27 +213,15 @@ impl Contact {
                 })
                 .collect();
             let mut copies = rings.iter_mut();
-            let mut caches: Vec<_> = t.scratch.chunks_mut(ny).map(|c| c.iter_mut()).collect();
-            let strips =
-                t.st.chunks_mut(n)
-                    .zip(t.acc.chunks_mut(n))
-                    .zip(t.node_st.chunks_mut(n).zip(t.node_acc.chunks_mut(n)))
-                    .zip(
-                        t.head
-                            .iter_mut()
-                            .zip(t.phase.iter_mut())
-                            .zip(t.part.iter_mut()),
-                    )
-                    .take(computed);
-            for (j, (((st, acc), (node_st, node_acc)), ((head, phase), part))) in strips.enumerate()
-            {
+            let (strips, scratch) = t.strips(n);
+            let mut caches: Vec<_> = scratch.chunks_mut(ny).map(|c| c.iter_mut()).collect();
+            for (j, (arrays, ring)) in strips.take(computed).enumerate() {
                 // the strip's caches, one per thread (a whole strip uses thread 0's)
                 let mut sc: Vec<&mut StripScratch> =
                     caches.iter_mut().filter_map(|c| c.next()).collect();
-                let arrays = (st, acc, node_st, node_acc);
                 if let Some(r) = assign[j] {
                     let sc = sc.drain(..).next().expect("a cache per strip and thread");
-                    let strip = Strip::whole(j, arrays, (head, phase, part), sc);
+                    let strip = Strip::whole(j, arrays, ring, sc);
                     work[r].strips.push(strip);
                 } else {
                     let s = shared
@@ -245,15 +229,7 @@ impl Contact {
                         .position(|&k| k == j)
                         .expect("a strip not given whole is shared");
                     let owner = &owners[s * n..(s + 1) * n];
-                    share_strip(
-                        &mut work,
-                        j,
-                        owner,
-                        arrays,
-                        (head, phase, part),
-                        &mut copies,
-                        sc,
-                    );
+                    share_strip(&mut work, j, owner, arrays, ring, &mut copies, sc);
                 }
             }
             pool.run(&mut work, |w| {

@@ -122,38 +122,18 @@ impl Contact {
     /// and each is copied onto strip ny - 1 - j, with bit-identical results (test
     /// `mirrored_strips_are_bit_identical`).
     pub(super) fn each_strip(&mut self, f: impl Fn(&Mover, &mut Strip) + Sync) {
-        self.settle_mirrored();
-        // `f` may write the node accumulators
-        self.coulomb.node_acc_zero = false;
-        let mirror = self.mirror_now();
-        let computed = if mirror {
-            self.lat.ny.div_ceil(2)
-        } else {
-            self.lat.ny
-        };
+        let (mirror, computed) = self.begin_strips();
         let nx1 = self.lat.nx + 1;
         let mut t = Taken::from(self);
         {
             let this = self.mover();
-            let mut strips: Vec<Strip> =
-                t.st.chunks_mut(nx1)
-                    .zip(t.acc.chunks_mut(nx1))
-                    .zip(t.node_st.chunks_mut(nx1).zip(t.node_acc.chunks_mut(nx1)))
-                    .zip(
-                        t.head
-                            .iter_mut()
-                            .zip(t.phase.iter_mut())
-                            .zip(t.part.iter_mut()),
-                    )
-                    .zip(t.scratch.iter_mut())
-                    .enumerate()
-                    .map(
-                        |(j, ((((st, acc), (node_st, node_acc)), ((head, phase), part)), sc))| {
-                            Strip::whole(j, (st, acc, node_st, node_acc), (head, phase, part), sc)
-                        },
-                    )
-                    .take(computed)
-                    .collect();
+            let (strips, scratch) = t.strips(nx1);
+            let mut strips: Vec<Strip> = strips
+                .zip(scratch.iter_mut())
+                .enumerate()
+                .map(|(j, ((arrays, ring), sc))| Strip::whole(j, arrays, ring, sc))
+                .take(computed)
+                .collect();
             let t0 = std::time::Instant::now();
             let parallel = self.balance.parallel();
             let work = match &self.pool {
@@ -196,6 +176,17 @@ impl Contact {
             self.state.head[m] = self.state.head[j];
             self.state.phase[m] = self.state.phase[j];
         }
+    }
+
+    /// Prepares a step of the strips ([`Self::each_strip`], `each_strip_shared`): whether
+    /// it computes one of each pair of mirror-image strips, and how many strips it computes.
+    pub(super) fn begin_strips(&mut self) -> (bool, usize) {
+        self.settle_mirrored();
+        // the step may write the node accumulators
+        self.coulomb.node_acc_zero = false;
+        let mirror = self.mirror_now();
+        let ny = self.lat.ny;
+        (mirror, if mirror { ny.div_ceil(2) } else { ny })
     }
 
     /// Whether this step computes one of each pair of mirror-image strips (they are mirror
@@ -323,6 +314,30 @@ impl Taken {
             phase: std::mem::take(&mut c.state.phase),
             scratch: std::mem::take(&mut c.scratch),
         }
+    }
+
+    /// Strip by strip (`n` bristles each), its per-bristle arrays and ring bookkeeping, and
+    /// beside them the strips' caches.
+    pub(super) fn strips(
+        &mut self,
+        n: usize,
+    ) -> (
+        impl Iterator<Item = (Arrays<'_>, Ring<'_>)>,
+        &mut [StripScratch],
+    ) {
+        let arrays = self
+            .st
+            .chunks_mut(n)
+            .zip(self.acc.chunks_mut(n))
+            .zip(self.node_st.chunks_mut(n).zip(self.node_acc.chunks_mut(n)))
+            .map(|((st, acc), (node_st, node_acc))| (st, acc, node_st, node_acc));
+        let rings = self
+            .head
+            .iter_mut()
+            .zip(self.phase.iter_mut())
+            .zip(self.part.iter_mut())
+            .map(|((head, phase), part)| (head, phase, part));
+        (arrays.zip(rings), &mut self.scratch)
     }
 
     /// Moves them back into `c`.
