@@ -6,6 +6,7 @@ import os
 import shutil
 import re
 import subprocess
+import sys
 import time
 
 import numpy as np
@@ -388,6 +389,58 @@ def test_instantiate_free_cycles_do_not_grow_memory(md, unzipdir, capsys):
         print(f"\n[fmu memory] {n} instantiate/init/step/state/free cycles: RSS {before} -> {after} KiB "
               f"({after - before:+d} KiB; one grid ~{grid_kib:.0f} KiB)")
     assert after - before < 2048, (before, after)
+
+
+UNLOAD_SCRIPT = """
+import glob, os, sys, time
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+fmu, threads, fresh = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "fresh"
+md = read_model_description(fmu)
+vr = {v.name: v.valueReference for v in md.modelVariables}
+def copies():
+    with open("/proc/self/maps") as fh:
+        return len({l.split()[-1] for l in fh if l.rstrip().endswith("ecf_contact.so")})
+base = len(os.listdir("/proc/self/task"))
+once = extract(fmu)
+for i in range(4):
+    s = FMU2Slave(guid=md.guid, unzipDirectory=extract(fmu) if fresh else once,
+                  modelIdentifier="ecf_contact", instanceName=f"c{i}")
+    s.instantiate()
+    s.setInteger([vr["threads"]], [threads])
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    for k in range(20):
+        s.doStep(currentCommunicationPoint=k * 1e-4, communicationStepSize=1e-4)
+    s.freeInstance()  # fmi2FreeInstance, then dlclose
+    extra = len(os.listdir("/proc/self/task")) - base
+    for _ in range(200):  # the workers end once they see the pool dropped
+        if extra == 0:
+            break
+        time.sleep(0.01)
+        extra = len(os.listdir("/proc/self/task")) - base
+    print(copies(), extra)
+"""
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/maps"), reason="reads /proc/self/maps (Linux)")
+def test_library_unloads_at_free_and_two_threads_keep_one_copy(fmu_path):
+    """With one thread the library leaves the process at freeInstance; with two, the pool's
+    thread-local state on the importer's thread keeps it loaded (glibc holds a library whose
+    thread-local destructors are pending) and the workers end: a run from the same extracted
+    copy reuses it, a run from a new copy adds one (docs/fmu.md, threads)."""
+    def run(threads, fresh):
+        out = subprocess.run([sys.executable, "-c", UNLOAD_SCRIPT, fmu_path, str(threads),
+                              "fresh" if fresh else "same"],
+                             capture_output=True, text=True, timeout=300)
+        assert out.returncode == 0, out.stderr[-3000:]
+        return [tuple(int(x) for x in line.split()) for line in out.stdout.split("\n") if line]
+
+    # (library copies mapped, threads above the start) after each of four runs
+    assert run(1, fresh=True) == [(0, 0)] * 4
+    assert run(2, fresh=False) == [(1, 0)] * 4
+    assert run(2, fresh=True) == [(1, 0), (2, 0), (3, 0), (4, 0)]
 
 
 def test_speed_of_one_do_step(md, unzipdir, capsys):
