@@ -184,7 +184,9 @@ else
   env "BINDGEN_EXTRA_CLANG_ARGS_$TARGET=-nostdinc -isystem $Z/include -isystem $Z/libc/include/x86-linux-gnu -isystem $Z/libc/include/generic-glibc -isystem $Z/libc/include/x86-linux-any -isystem $Z/libc/include/any-linux-any" \
     cargo zigbuild --release ${MAN[@]+"${MAN[@]}"} "${PKG[@]}" --target "$TARGET.$GLIBC_MAX" >&2
 fi
-SO="target/$TARGET/release/lib$LIBNAME.so"
+# where cargo wrote it: $CARGO_TARGET_DIR when set (relative to the root, where cargo ran), else
+# target/ (packing target/ under a set CARGO_TARGET_DIR would pack a stale library)
+SO="${CARGO_TARGET_DIR:-target}/$TARGET/release/lib$LIBNAME.so"
 [ -f "$SO" ] || { echo "build-fmu: $SO not found" >&2; exit 1; }
 
 # --- binary checks -----------------------------------------------------------------------
