@@ -345,15 +345,16 @@ impl ModelSetup {
         let file_scheme =
             tolerance::restricting_scheme(cfg, steady).filter(|_| explicit_scheme.is_none());
         let scheme = explicit_scheme.or(file_scheme);
+        let rows = tolerance::table()?;
         let filter = Filter {
-            preset: tolerance::scope_of(cfg),
+            preset: tolerance::scope_in(&rows, cfg),
             nx: grid.map(|g| g.nx),
             ny: grid.map(|g| g.ny),
             scheme,
             steady,
         };
         let dt = dt.filter(|d| d.is_finite() && *d > 0.0);
-        match tolerance::choose(tol, self.v_mps, dt, filter) {
+        match tolerance::choose_in(&rows, tol, self.v_mps, dt, filter) {
             Ok(c) => {
                 cfg.grid = Grid { nx: c.nx, ny: c.ny };
                 let what = if steady {

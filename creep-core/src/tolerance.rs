@@ -37,7 +37,6 @@
 
 use crate::error::{CreepError, Result};
 use crate::scheme::Scheme;
-use std::sync::OnceLock;
 
 /// The accuracy table as written by the benchmark (comment lines `#`, a header, the rows).
 pub const TABLE_CSV: &str = include_str!("../data/accuracy.csv");
@@ -165,16 +164,14 @@ pub fn parse(text: &str, name: &str) -> Result<Vec<Row>> {
     Ok(rows)
 }
 
-/// The compiled-in table, parsed once.
-pub fn table() -> Result<&'static [Row]> {
-    static T: OnceLock<std::result::Result<Vec<Row>, String>> = OnceLock::new();
-    match T.get_or_init(|| parse(TABLE_CSV, "data/accuracy.csv").map_err(|e| e.to_string())) {
-        Ok(rows) => Ok(rows),
-        Err(e) => Err(CreepError::Config {
-            source_name: "creep-core accuracy table".into(),
-            message: e.clone(),
-        }),
-    }
+/// The compiled-in table, parsed at each call (a few hundred rows; once per FMU instance).
+/// Not cached in a static: an FMU's importer loads and unloads the library once per run,
+/// and a static's heap is never freed at the unload (about 70 kB per load).
+pub fn table() -> Result<Vec<Row>> {
+    parse(TABLE_CSV, "data/accuracy.csv").map_err(|e| CreepError::Config {
+        source_name: "creep-core accuracy table".into(),
+        message: e.to_string(),
+    })
 }
 
 /// The comment lines of the compiled-in table (what, units, commit and date measured on).
@@ -297,7 +294,7 @@ pub fn check_tol(tol: f64, what: &str) -> Result<()> {
 /// The grid and scheme for tolerance `tol` (fraction) at speed `v` (m/s) with communication
 /// step `dt` (s, if known), from the compiled-in table. See the module's rule.
 pub fn choose(tol: f64, v: f64, dt: Option<f64>, filter: Filter) -> Result<Choice> {
-    choose_in(table()?, tol, v, dt, filter)
+    choose_in(&table()?, tol, v, dt, filter)
 }
 
 /// [`choose`] on a given table.
@@ -485,8 +482,13 @@ pub fn restricting_scheme(cfg: &crate::Config, steady: bool) -> Option<Scheme> {
 /// Coulomb bound and modifiers (grid and geometry may differ); None otherwise (the choice
 /// then takes the worst over all presets).
 pub fn scope_of(cfg: &crate::Config) -> Option<&'static str> {
+    scope_in(&table().ok()?, cfg)
+}
+
+/// [`scope_of`] in a given table.
+pub fn scope_in(rows: &[Row], cfg: &crate::Config) -> Option<&'static str> {
     use crate::effects::Effect;
-    let row = table().ok()?.iter().find(|r| r.preset == cfg.preset)?;
+    let row = rows.iter().find(|r| r.preset == cfg.preset)?;
     let p = crate::Config::preset(&row.preset).ok()?;
     // `transient` off makes every step the steady state of the same model (quasi-steady),
     // whose error is the settled error the table's responses end with: the same preset
@@ -494,12 +496,19 @@ pub fn scope_of(cfg: &crate::Config) -> Option<&'static str> {
     if p.effects.has(Effect::Transient) {
         effects.insert(Effect::Transient);
     }
-    (p.model == cfg.model
+    let same = p.model == cfg.model
         && p.effects == effects
         && p.params == cfg.params
         && p.bound == cfg.bound
-        && p.modifiers == cfg.modifiers)
-        .then_some(row.preset.as_str())
+        && p.modifiers == cfg.modifiers;
+    if !same {
+        return None;
+    }
+    // the preset's name as the compiled-in list of presets holds it
+    crate::config::PRESETS
+        .iter()
+        .map(|(name, _)| *name)
+        .find(|name| *name == row.preset)
 }
 
 /// The tabulated grids and schemes (distinct, sorted by grid size then scheme name).
@@ -557,7 +566,7 @@ mod tests {
         speeds.dedup();
         let mut met_some = 0;
         for &s in &speeds {
-            let all = brute(t, s);
+            let all = brute(&t, s);
             // tolerances around every tabulated error at this speed, and a loose one
             let mut tols: Vec<f64> = all.iter().map(|o| o.3 / 100.0).collect();
             tols.extend(all.iter().map(|o| o.3 / 100.0 * 1.001));
@@ -602,7 +611,7 @@ mod tests {
             let c = choose(1e-6, v, None, Filter::default()).expect("choice");
             assert_eq!(c.v_tab, s);
             assert!(!c.met);
-            let all = brute(t, s);
+            let all = brute(&t, s);
             let best = all.iter().map(|o| o.3).fold(f64::INFINITY, f64::min);
             let unc = t
                 .iter()

@@ -622,8 +622,13 @@ impl Settings {
         if rel_tol <= 0.0 || cfg.model != ModelKind::Ecf {
             return None;
         }
+        // parsed once here: the compiled-in table is not cached (creep_core::tolerance::table)
+        let rows = match creep_core::tolerance::table() {
+            Ok(rows) => rows,
+            Err(e) => return Some(Err(format!("rel_tol = {rel_tol}: {e}"))),
+        };
         let filter = creep_core::tolerance::Filter {
-            preset: creep_core::tolerance::scope_of(cfg),
+            preset: creep_core::tolerance::scope_in(&rows, cfg),
             nx: self.nx,
             ny: self.ny,
             // the parameter's scheme, else the configuration's (as the CLI's --tol)
@@ -632,7 +637,7 @@ impl Settings {
                 .or(creep_core::tolerance::restricting_scheme(cfg, false)),
             steady: false,
         };
-        match creep_core::tolerance::choose(rel_tol, v, None, filter) {
+        match creep_core::tolerance::choose_in(&rows, rel_tol, v, None, filter) {
             Ok(c) => Some(Ok(c)),
             // the start value is no request: with explicit settings the table lacks, they
             // are used as they are, without a word

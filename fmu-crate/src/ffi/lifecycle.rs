@@ -100,6 +100,7 @@ pub(super) fn free_instance(c: *mut std::ffi::c_void, func: &str) {
             } else {
                 Vec::new()
             };
+            r.release_when_idle();
             (ptr, states)
         };
         drop(states);

@@ -31,7 +31,7 @@ use crate::vars::{self, Causality, In, Value, Var, N_INPUTS};
 use creep_core::bytes::{Reader, Writer};
 use creep_core::{Config, Model};
 use std::collections::HashSet;
-use std::sync::OnceLock;
+use std::sync::{Arc, Mutex};
 
 mod legacy;
 #[cfg(test)]
@@ -47,15 +47,28 @@ pub const VERSION: u32 = 9;
 /// The oldest format version this build reads.
 pub const OLDEST: u32 = 2;
 
-/// The FMU's parameters (the variables a state's settings are stored as), built once.
-fn parameters() -> &'static [Var] {
-    static P: OnceLock<Vec<Var>> = OnceLock::new();
-    P.get_or_init(|| {
-        vars::table()
-            .into_iter()
-            .filter(|v| v.causality == Causality::Parameter)
-            .collect()
+/// The FMU's parameters (the variables a state's settings are stored as), built at the
+/// first use (about 30 us) and kept until [`release_parameters`].
+static PARAMETERS: Mutex<Option<Arc<Vec<Var>>>> = Mutex::new(None);
+
+/// The FMU's parameters ([`PARAMETERS`]).
+fn parameters() -> Arc<Vec<Var>> {
+    let mut p = PARAMETERS.lock().unwrap_or_else(|e| e.into_inner());
+    p.get_or_insert_with(|| {
+        Arc::new(
+            vars::table()
+                .into_iter()
+                .filter(|v| v.causality == Causality::Parameter)
+                .collect(),
+        )
     })
+    .clone()
+}
+
+/// Frees the parameter list (the library's last instance was freed): a static's heap would
+/// otherwise stay allocated after the importer unloads the library.
+pub fn release_parameters() {
+    *PARAMETERS.lock().unwrap_or_else(|e| e.into_inner()) = None;
 }
 
 /// Refuses a name that a list stored by name holds twice (a reader that let the last one win
@@ -100,7 +113,8 @@ pub fn serialize(s: &Snapshot) -> Vec<u8> {
         w.str(&i.name());
         w.f64(x);
     }
-    let set: Vec<(&str, Value)> = parameters()
+    let params = parameters();
+    let set: Vec<(&str, Value)> = params
         .iter()
         .filter_map(|v| s.settings.stored(v.slot).map(|x| (v.name.as_str(), x)))
         .collect();
@@ -188,6 +202,7 @@ fn read_inputs(r: &mut Reader) -> Result<[f64; N_INPUTS], String> {
 
 /// Reads the settings stored by name (u32 count, then name, type and value each).
 fn read_settings(r: &mut Reader) -> Result<Settings, String> {
+    let params = parameters();
     let mut st = Settings::default();
     let mut seen = HashSet::new();
     for _ in 0..r.u32()? {
@@ -200,7 +215,7 @@ fn read_settings(r: &mut Reader) -> Result<Settings, String> {
             3 => Value::String(r.str()?),
             t => return Err(format!("the setting '{name}' has the bad type code {t}")),
         };
-        let v = parameters()
+        let v = params
             .iter()
             .find(|v| v.name == name && carried(v))
             .ok_or_else(|| {

@@ -222,7 +222,7 @@ fn every_carried_setting_round_trips_and_the_instances_own_are_not_stored() {
     assert_ne!(carried, Settings::default());
     assert_eq!(back.settings, carried);
     assert_eq!(back.settings.params.get(&P::Mu), Some(&(0.1 + 0.2)));
-    for v in parameters() {
+    for v in parameters().iter() {
         let stored = snap.settings.stored(v.slot).is_some();
         match v.slot {
             Slot::Threads | Slot::Scheme | Slot::TemperatureSolve | Slot::RelTol => {
