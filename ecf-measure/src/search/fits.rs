@@ -18,9 +18,19 @@ pub const FIT_TOLERANCE: f64 = 1e-5;
 /// How many of the shortlist's best forms are fitted with every free parameter.
 pub const FINALISTS: usize = 2;
 
-/// The name of a form's formula effect.
-fn effect_name(t: Target) -> String {
-    format!("form_{}", t.name())
+/// The name of a form's formula effect in `cfg`: `form_<target>`, or `form_<target>_2`, `_3`,
+/// ... when `cfg` already has a modifier of that name (a second round of the diagnosis on a
+/// configuration the first one proposed; a configuration file refuses a name twice).
+fn effect_name(cfg: &Config, t: Target) -> String {
+    let base = format!("form_{}", t.name());
+    let taken = |n: &str| cfg.modifiers.iter().any(|m| m.name() == n);
+    if !taken(&base) {
+        return base;
+    }
+    (2..)
+        .map(|k| format!("{base}_{k}"))
+        .find(|n| !taken(n))
+        .unwrap_or(base)
 }
 
 /// `cfg` plus the form with parameters `p` (the target's level parameters scaled by
@@ -45,7 +55,7 @@ pub(super) fn with_form(
             max: q.2,
         })
         .collect();
-    let fe = FormulaEffect::new(&effect_name(t), t, &shape.factor(v), params)?;
+    let fe = FormulaEffect::new(&effect_name(cfg, t), t, &shape.factor(v), params)?;
     let mut c = cfg.clone();
     if level.is_finite() && level != 0.0 {
         for &q in level_params(t) {
@@ -358,5 +368,36 @@ impl Searcher<'_> {
             last = self.elapsed() - began;
         }
         (out, 0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use creep_core::Modifier as _;
+
+    #[test]
+    fn a_second_form_on_a_target_gets_a_name_of_its_own_and_the_file_reads_back() {
+        let cfg = Config::preset("dry").expect("preset");
+        let v = Var {
+            expr: "v_mps".into(),
+            r: 15.0,
+            s: 8.165,
+            min: 5.0,
+            positive: true,
+            x: vec![5.0, 15.0, 25.0],
+        };
+        let (one, _) = with_form(&cfg, &[], Target::Strengths, Shape::Linear, &v, &[0.1], 0.0)
+            .expect("first form");
+        let (two, free) = with_form(&one, &[], Target::Strengths, Shape::Exp, &v, &[0.2], 0.0)
+            .expect("second form");
+        let names: Vec<&str> = two.modifiers.iter().map(|m| m.name()).collect();
+        assert_eq!(names, ["form_strengths", "form_strengths_2"]);
+        assert_eq!(free.len(), 1);
+        // the configuration `--out` writes is one a second run reads
+        let text = two.to_json().to_string();
+        let back = Config::from_json_str(&text, "proposed.json").expect("reads back");
+        let back_names: Vec<&str> = back.modifiers.iter().map(|m| m.name()).collect();
+        assert_eq!(back_names, names);
     }
 }
