@@ -16,8 +16,8 @@ pub use crate::modifier::Target;
 
 /// Local-state variables (indices 0..4 of the evaluation slice).
 pub const LOCAL: [&str; 4] = ["p_GPa", "T_C", "u_mm", "slip_mps"];
-/// Operating-point variables (indices 4..9).
-pub const OPERATING: [&str; 5] = ["v_mps", "fn_kN", "cx", "cy", "spin_per_m"];
+/// Operating-point variables (indices 4..10).
+pub const OPERATING: [&str; 6] = ["v_mps", "fn_kN", "cx", "cy", "spin_per_m", "t_bulk_C"];
 
 /// The functions a formula may call, resolved when it is compiled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -596,7 +596,8 @@ impl Modifier for FormulaEffect {
             Op::Operating(1) => op.fn_kn,
             Op::Operating(2) => op.cx,
             Op::Operating(3) => op.cy,
-            Op::Operating(_) => op.spin_per_m,
+            Op::Operating(4) => op.spin_per_m,
+            Op::Operating(_) => op.t_bulk_c,
             Op::Column(i) => cols.get(i as usize).copied().unwrap_or(f64::NAN),
             _ => f64::NAN,
         })
@@ -646,7 +647,7 @@ mod tests {
         // every variable with its own weight: a variable read from the wrong slot changes
         // the sum
         let src = "p_GPa + 10*T_C + 100*u_mm + 1e3*slip_mps + 1e4*v_mps + 1e5*fn_kN \
-                   + 1e6*cx + 1e7*cy + 1e8*spin_per_m + 1e9*rain + 1e10*snow + k";
+                   + 1e6*cx + 1e7*cy + 1e8*spin_per_m + 1e9*rain + 1e10*snow + 1e11*t_bulk_C + k";
         let k = FormulaParam {
             name: "k".into(),
             value: 0.5,
@@ -668,12 +669,13 @@ mod tests {
             cx: 1.0,
             cy: 2.0,
             spin_per_m: 3.0,
+            t_bulk_c: 9.0,
             columns: &named,
         };
-        let want = 1.0 + 20.0 + 300.0 + 4e3 + 5e4 + 6e5 + 1e6 + 2e7 + 3e8 + 7e9 + 8e10 + 0.5;
+        let want = 1.0 + 20.0 + 300.0 + 4e3 + 5e4 + 6e5 + 1e6 + 2e7 + 3e8 + 7e9 + 8e10 + 9e11 + 0.5;
         // the columns come in the formula's order, resolved by the caller
         assert_eq!(f.factor(&local, &op, &[7.0, 8.0]), want);
-        let vars = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 1.0, 2.0, 3.0, 7.0, 8.0];
+        let vars = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 1.0, 2.0, 3.0, 9.0, 7.0, 8.0];
         assert_eq!(f.eval(&vars), want);
         // a missing column reads as NaN
         assert!(f.factor(&local, &op, &[7.0]).is_nan());

@@ -110,6 +110,9 @@ pub struct OperatingPoint<'a> {
     pub cy: f64,
     /// Spin, 1/m.
     pub spin_per_m: f64,
+    /// Bulk temperature of wheel and rail T_B, degC (the input of the flash temperature,
+    /// seed Eq. 4.35).
+    pub t_bulk_c: f64,
     /// Data columns (name, value) of the current measurement row.
     pub columns: &'a [(String, f64)],
 }

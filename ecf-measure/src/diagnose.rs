@@ -651,7 +651,7 @@ fn noise_words(
             n.cv_rmse_pct, n.sd_f, n.method, crate::search::gain_of_noise(rows)
         ),
         (Some(n), Some(t)) => format!(
-            " The best model ({best_model}, held-out {best_heldout:.2} %) is still {t:.1} times the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): something is still missing. Besides data columns, a formula effect can use the operating point (v_mps, fn_kN, cx, cy, spin_per_m) and the local state (p_GPa, T_C, u_mm, slip_mps) to scale tau_c1, tau_c2, both strengths together, L_e, L_p or mu (docs/measurements.md).",
+            " The best model ({best_model}, held-out {best_heldout:.2} %) is still {t:.1} times the noise level of the data (about {:.2} %, sd {:.4} of F_x/F_N, from {}): something is still missing. Besides data columns, a formula effect can use the operating point (v_mps, fn_kN, cx, cy, spin_per_m, t_bulk_C) and the local state (p_GPa, T_C, u_mm, slip_mps) to scale tau_c1, tau_c2, both strengths together, L_e, L_p or mu (docs/measurements.md).",
             n.cv_rmse_pct, n.sd_f, n.method
         ),
         _ => " The noise level of the data could not be estimated (no repeated operating points, no curve of five points or more): whether something is still missing cannot be said.".to_string(),

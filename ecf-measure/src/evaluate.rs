@@ -181,6 +181,7 @@ fn bad_factor(cfg: &Config, data: &Dataset, r: &Row) -> Option<(String, f64)> {
         cx: r.cx,
         cy: r.cy,
         spin_per_m: r.spin,
+        t_bulk_c: r.t_bulk,
         columns: &named,
     };
     for m in &cfg.modifiers {

@@ -39,6 +39,13 @@ pub fn correlations(data: &Dataset, pred: &[Prediction]) -> Vec<Correlation> {
         ),
         ("p0_MPa".into(), pred.iter().map(|p| p.p0 / 1e6).collect()),
     ];
+    // the bulk temperature, where it varies over the file
+    if data.rows.iter().any(|r| r.t_bulk != data.rows[0].t_bulk) {
+        vars.push((
+            "t_bulk_C".into(),
+            data.rows.iter().map(|r| r.t_bulk).collect(),
+        ));
+    }
     if data.rows.iter().any(|r| r.t.is_some()) {
         vars.push((
             "dcx_dt_per_s".into(),

@@ -22,8 +22,8 @@ pub(super) struct Modifiers {
     /// Per modifier: the values of its [`Modifier::columns`], in their order.
     cols: Vec<Vec<f64>>,
     /// The user's operating point (v < 0 when rolling backwards, not the mirrored frame's):
-    /// v (m/s), F_N (kN), c_x, c_y, spin (1/m).
-    op: [f64; 5],
+    /// v (m/s), F_N (kN), c_x, c_y, spin (1/m), T_B (degC).
+    op: [f64; 6],
     /// Product of the factors of the modifiers that do not read the local state, per target
     /// (tau_c1, tau_c2, L_e, L_p, mu).
     fstatic: [f64; 5],
@@ -43,7 +43,7 @@ impl Modifiers {
             list: list.to_vec(),
             extra: Vec::new(),
             cols: vec![Vec::new(); list.len()],
-            op: [0.0; 5],
+            op: [0.0; 6],
             fstatic: [1.0; 5],
             local: order
                 .iter()
@@ -73,6 +73,7 @@ impl Modifiers {
             cx: self.op[2],
             cy: self.op[3],
             spin_per_m: self.op[4],
+            t_bulk_c: self.op[5],
             columns: &self.extra,
         }
     }
@@ -82,10 +83,11 @@ impl Modifiers {
         self.extra = values.to_vec();
     }
 
-    /// Moves the collection to the operating point `op` (v m/s, F_N kN, c_x, c_y, spin 1/m):
+    /// Moves the collection to the operating point `op` (v m/s, F_N kN, c_x, c_y, spin 1/m,
+    /// T_B degC):
     /// resolves every modifier's columns and multiplies the factors of those that do not
     /// read the local state. Err names a column a modifier reads and the data lack.
-    pub(super) fn at(&mut self, op: [f64; 5]) -> Result<()> {
+    pub(super) fn at(&mut self, op: [f64; 6]) -> Result<()> {
         if self.list.is_empty() {
             return Ok(());
         }
@@ -165,7 +167,7 @@ impl Contact {
         let i = super::mirror_inputs(&self.state.run.inputs, self.state.run.reversed);
         self.law
             .modifiers
-            .at([i.v, i.fn_n / 1e3, i.cx, i.cy, i.spin])
+            .at([i.v, i.fn_n / 1e3, i.cx, i.cy, i.spin, i.t_bulk])
     }
 }
 

@@ -374,7 +374,6 @@ impl Searcher<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use creep_core::Modifier as _;
 
     #[test]
     fn a_second_form_on_a_target_gets_a_name_of_its_own_and_the_file_reads_back() {

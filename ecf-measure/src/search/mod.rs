@@ -243,6 +243,11 @@ fn variables(data: &Dataset, pred: &[Prediction]) -> Vec<Var> {
         ),
         ("p_GPa".into(), pred.iter().map(|p| p.p0 / 1e9).collect()),
         ("T_C".into(), pred.iter().map(|p| p.t_max).collect()),
+        // the bulk temperature, where the file gives it per row (a constant is passed over)
+        (
+            "t_bulk_C".into(),
+            data.rows.iter().map(|r| r.t_bulk).collect(),
+        ),
     ];
     for (k, n) in data.extra_names.iter().enumerate() {
         v.push((n.clone(), data.rows.iter().map(|r| r.extra[k]).collect()));

@@ -344,6 +344,7 @@ mod tests {
                     cx: 0.0,
                     cy: 0.0,
                     spin_per_m: 0.0,
+                    t_bulk_c: 20.0,
                     columns: &[],
                 };
                 use creep_core::Modifier;

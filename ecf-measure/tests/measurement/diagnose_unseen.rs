@@ -80,6 +80,13 @@ fn a_speed_threshold_between_two_of_four_speeds_is_placed_by_the_other_load() {
 }
 
 #[test]
+fn a_threshold_in_the_bulk_temperature_is_found() {
+    // the file's t_bulk_C, one value per curve, is the model's bulk temperature: a variable
+    // of the residual correlations, of the search and of formula effects
+    check_case("bulk-threshold-tau_c2", 11);
+}
+
+#[test]
 fn nothing_missing_nothing_proposed_over_noise_seeds() {
     for (preset, seed) in [("dry", 31), ("table4.1", 32), ("wet", 33)] {
         let truth = hidden::truth(preset, "tau_c1", None);

@@ -38,7 +38,7 @@ pub struct Case {
     pub variables: &'static [&'static str],
 }
 
-/// The cases: speed, load, slip speed, local temperature and an extra column; linear,
+/// The cases: speed, load, slip speed, local and bulk temperature and an extra column; linear,
 /// reciprocal, saturating and threshold shapes; one strength and both together.
 pub fn cases() -> Vec<Case> {
     vec![
@@ -123,8 +123,21 @@ pub fn cases() -> Vec<Case> {
             distractor: false,
             variables: &["sand_g"],
         },
+        Case {
+            name: "bulk-threshold-tau_c2",
+            preset: "dry",
+            target: "tau_c2",
+            factor: "1 - 0.25 / (1 + exp(-(t_bulk_C - 30) / 3))",
+            column: Some((BULK, 0.0, 50.0)),
+            distractor: false,
+            variables: &[BULK],
+        },
     ]
 }
+
+/// The column of the bulk temperature: a file's `t_bulk_C` is the model's input T_B, not a
+/// data column, so a case's per-curve values of it go to the truth's inputs.
+pub const BULK: &str = "t_bulk_C";
 
 /// A truth: `preset` on 80 x 21 cells (higher-order rules) with `factor` on `target` (no
 /// factor: the preset itself).
@@ -320,9 +333,12 @@ pub fn csv_text_in(
             for e in extras.iter_mut() {
                 e.1 = (e.1 * 1e4).round() / 1e4;
             }
+            let t_bulk = extras.iter().find(|e| e.0 == BULK).map(|e| e.1);
+            let data_columns: Vec<(String, f64)> =
+                extras.iter().filter(|e| e.0 != BULK).cloned().collect();
             let mut m = Model::new(truth).expect("model");
-            if !extras.is_empty() {
-                m.set_extra(&extras).expect("extras");
+            if !data_columns.is_empty() {
+                m.set_extra(&data_columns).expect("extras");
             }
             for i in 0..n {
                 let cx = cx0 * (cx1 / cx0).powf(i as f64 / (n - 1) as f64);
@@ -332,6 +348,7 @@ pub fn csv_text_in(
                         cx,
                         v,
                         fn_n: fkn * 1e3,
+                        t_bulk: t_bulk.unwrap_or(Inputs::default().t_bulk),
                         ..Inputs::default()
                     })
                     .expect("steady")

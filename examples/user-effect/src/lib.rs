@@ -68,6 +68,7 @@ mod tests {
             cx: 0.01,
             cy: 0.0,
             spin_per_m: 0.0,
+            t_bulk_c: 20.0,
             columns: &cols,
         };
         OilFilm.factor(&[1.0, 0.3], &LocalState::default(), &op)
