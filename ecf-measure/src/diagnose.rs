@@ -717,8 +717,18 @@ fn search_words(
                 }
                 None => " The noise level could not be estimated: whether more is missing cannot be said.".into(),
             };
+            // what ecf fit would say of the proposal's fit on all rows: a parameter far outside
+            // its plausible range stands in for something else
+            let warned = if s.proposed_warnings.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " Its fit on all rows warns: {}",
+                    s.proposed_warnings.join("; ")
+                )
+            };
             format!(
-                " Proposed: {} x {} in {} (factor {}), {}: the held-out CV(RMSE) falls from {best_heldout:.2} % to {:.2} % ({:.0} % lower).{next} The configuration with it, fitted on all rows, is in proposed_config (ecf diagnose --out FILE writes it; ecf fit and the FMU take it as is).",
+                " Proposed: {} x {} in {} (factor {}), {}: the held-out CV(RMSE) falls from {best_heldout:.2} % to {:.2} % ({:.0} % lower).{next} The configuration with it, fitted on all rows, is in proposed_config (ecf diagnose --out FILE writes it; ecf fit and the FMU take it as is).{warned}",
                 f.target,
                 f.shape,
                 f.variable,
@@ -756,6 +766,51 @@ fn search_words(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_verdict_carries_the_warnings_of_the_proposals_fit() {
+        let form = crate::search::Form {
+            target: "tau_c2".into(),
+            variable: "fn_kN".into(),
+            shape: "power".into(),
+            factor: "(fn_kN / 100)^k".into(),
+            screen_cv_rmse_pct: 8.5,
+            shortlist_cv_rmse_pct: 8.2,
+            heldout_cv_rmse_pct: 8.09,
+            evidence_z: 6.0,
+            params: vec![crate::search::FormParam {
+                name: "k".into(),
+                value: -0.3,
+                stderr: 0.01,
+            }],
+            fitted_cv_rmse_pct: 7.9,
+        };
+        let warning = "tau_c2_0 = 1.29e11 Pa is outside its plausible physical range";
+        let mut s = crate::search::Search {
+            forms: vec![form.clone()],
+            tried: 1,
+            total: 1,
+            seconds: 1.0,
+            cost: crate::search::SearchCost {
+                shortlisted: 1,
+                finalists: 1,
+                ..Default::default()
+            },
+            proposed: Some(form),
+            proposed_config: None,
+            proposed_warnings: vec![warning.into()],
+        };
+        let noise = crate::noise::Noise {
+            sd_f: 0.006,
+            cv_rmse_pct: 2.0,
+            method: "test".into(),
+            dof: 100,
+        };
+        let words = |s: &crate::search::Search| search_words(s, Some(&noise), 9.7, 9.7, 50.0, 120);
+        assert!(words(&s).contains(&format!("Its fit on all rows warns: {warning}")));
+        s.proposed_warnings.clear();
+        assert!(!words(&s).contains("warns"));
+    }
 
     /// The grid chosen for a preset at a noise level (%): `None` keeps the preset's 80 x 21.
     fn chosen(noise: f64) -> Option<(usize, usize)> {

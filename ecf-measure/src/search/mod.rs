@@ -224,6 +224,9 @@ pub struct Search {
     /// The configuration with the proposed form, fitted on all rows: ready for `ecf fit` and
     /// the FMU.
     pub proposed_config: Option<serde_json::Value>,
+    /// The warnings of that fit on all rows, as `ecf fit` prints them: fitted values outside
+    /// their plausible physical range, solver stops that are not convergence.
+    pub proposed_warnings: Vec<String>,
 }
 
 fn variables(data: &Dataset, pred: &[Prediction]) -> Vec<Var> {
@@ -464,6 +467,7 @@ pub(crate) fn search(
         cost,
         proposed: proposed_at.map(finalist),
         proposed_config: proposed_at.map(|j| finals[j].fit.config.to_json()),
+        proposed_warnings: proposed_at.map_or_else(Vec::new, |j| finals[j].fit.warnings.clone()),
     })
 }
 
