@@ -37,6 +37,12 @@ use creep_core::Modifier;
 /// with nothing missing scores the noise plus what fitting on the other folds adds.
 pub const AT_NOISE: f64 = 1.5;
 
+/// A proposed form whose factor spans more than this over the file's rows (largest over
+/// smallest) is said to be more likely a stand-in than a property of the layer: the hidden
+/// effects of the tests span 1.3-2-fold, while a creepage offset of 0.05 % that the search
+/// took up as L_e spanned 280-fold.
+pub const FACTOR_SPAN: f64 = 10.0;
+
 /// |r| from which an extra column counts as showing strong residual structure.
 pub const STRONG: f64 = 0.3;
 
@@ -719,7 +725,7 @@ fn search_words(
             };
             // what ecf fit would say of the proposal's fit on all rows: a parameter far outside
             // its plausible range stands in for something else
-            let warned = if s.proposed_warnings.is_empty() {
+            let mut warned = if s.proposed_warnings.is_empty() {
                 String::new()
             } else {
                 format!(
@@ -727,6 +733,14 @@ fn search_words(
                     s.proposed_warnings.join("; ")
                 )
             };
+            let [lo, hi] = f.factor_range;
+            if lo > 0.0 && hi / lo > FACTOR_SPAN {
+                warned += &format!(
+                    " Its factor spans {lo:.3} to {hi:.3} over the file's rows ({:.0}-fold): a change that large in {} is more likely a stand-in for something else, such as an offset or a gain of the measured creepage or force, than a property of the layer.",
+                    hi / lo,
+                    f.target
+                );
+            }
             format!(
                 " Proposed: {} x {} in {} (factor {}), {}: the held-out CV(RMSE) falls from {best_heldout:.2} % to {:.2} % ({:.0} % lower).{next} The configuration with it, fitted on all rows, is in proposed_config (ecf diagnose --out FILE writes it; ecf fit and the FMU take it as is).{warned}",
                 f.target,
@@ -784,6 +798,7 @@ mod tests {
                 stderr: 0.01,
             }],
             fitted_cv_rmse_pct: 7.9,
+            factor_range: [0.8, 1.2],
         };
         let warning = "tau_c2_0 = 1.29e11 Pa is outside its plausible physical range";
         let mut s = crate::search::Search {
@@ -810,6 +825,12 @@ mod tests {
         assert!(words(&s).contains(&format!("Its fit on all rows warns: {warning}")));
         s.proposed_warnings.clear();
         assert!(!words(&s).contains("warns"));
+        assert!(!words(&s).contains("stand-in"));
+        // a factor from 0.22 to 62 over the file (an offset of c_x taken up as L_e)
+        if let Some(f) = s.proposed.as_mut() {
+            f.factor_range = [0.22, 62.0];
+        }
+        assert!(words(&s).contains("(282-fold)"), "{}", words(&s));
     }
 
     /// The grid chosen for a preset at a noise level (%): `None` keeps the preset's 80 x 21.

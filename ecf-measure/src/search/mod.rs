@@ -138,6 +138,9 @@ pub struct Form {
     pub params: Vec<FormParam>,
     /// In-sample CV(RMSE) on all rows, % (NaN when not fitted).
     pub fitted_cv_rmse_pct: f64,
+    /// The smallest and the largest factor over the file's rows with the parameters fitted
+    /// on all rows, - (NaN when not fitted).
+    pub factor_range: [f64; 2],
 }
 
 impl Form {
@@ -445,6 +448,9 @@ pub(crate) fn search(
             q.stderr = fp.stderr;
         }
         f.fitted_cv_rmse_pct = fi.fit.cv_rmse_pct_after;
+        let plan = screened[short[fi.short].screened].plan;
+        let p: Vec<f64> = f.params.iter().map(|q| q.value).collect();
+        f.factor_range = plan.shape.factor_range(&vars[plan.var], &p);
         f
     };
     let mut forms: Vec<Form> = order.iter().map(|&j| finalist(j)).collect();
@@ -707,6 +713,7 @@ impl Searcher<'_> {
                 })
                 .collect(),
             fitted_cv_rmse_pct: f64::NAN,
+            factor_range: [f64::NAN; 2],
         }
     }
 }

@@ -117,6 +117,15 @@ impl Shape {
         }
     }
 
+    /// The smallest and the largest factor over the data's values of `v` with parameters `p`.
+    pub fn factor_range(self, v: &Var, p: &[f64]) -> [f64; 2] {
+        v.x.iter()
+            .map(|&x| self.ln_factor(v, x, p).exp())
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], g| {
+                [lo.min(g), hi.max(g)]
+            })
+    }
+
     /// ln of the factor at `x` with parameters `p`, as [`Shape::factor`] computes it.
     pub fn ln_factor(self, v: &Var, x: f64, p: &[f64]) -> f64 {
         let z = (x - v.r) / v.s;

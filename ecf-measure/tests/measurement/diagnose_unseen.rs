@@ -45,6 +45,12 @@ fn check_case_in(layout: &hidden::Layout, name: &str, seed: u64) {
         p.shape,
         p.variable
     );
+    // a real effect of the layer is not called a stand-in for a measurement error
+    let [lo, hi] = p.factor_range;
+    assert!(
+        hi / lo <= ecf_measure::diagnose::FACTOR_SPAN && !d.verdict.contains("stand-in"),
+        "{name}: factor from {lo} to {hi}"
+    );
     assert!(
         p.heldout_cv_rmse_pct <= 1.3 * noise,
         "{name}: held-out {:.2} % against a noise of {noise:.2} %",
