@@ -103,3 +103,17 @@ fn nothing_missing_nothing_proposed_over_noise_seeds() {
         assert!(proposed.is_none(), "{preset} seed {seed}: {}", d.verdict);
     }
 }
+
+#[test]
+fn nothing_missing_nothing_proposed_with_a_bulk_temperature_per_curve() {
+    // t_bulk_C varies (0-50 degC per curve) and is a variable of the search: the truth is the
+    // preset at those temperatures, nothing is missing
+    for (preset, seed) in [("dry", 41), ("table4.1", 42), ("wet", 43)] {
+        let truth = hidden::truth(preset, "tau_c1", None);
+        let (data, _) = hidden::file(&truth, Some((hidden::BULK, 0.0, 50.0)), true, seed);
+        let cfg = creep_core::Config::preset(preset).unwrap();
+        let d = diagnose_opts(&cfg, &data, &opts(), &|_| {}).unwrap();
+        let proposed = d.search.as_ref().and_then(|s| s.proposed.as_ref());
+        assert!(proposed.is_none(), "{preset} seed {seed}: {}", d.verdict);
+    }
+}
