@@ -166,7 +166,7 @@ pub fn parse(text: &str, name: &str) -> Result<Vec<Row>> {
 
 /// The compiled-in table, parsed at each call (a few hundred rows; once per FMU instance).
 /// Not cached in a static: an FMU's importer loads and unloads the library once per run,
-/// and a static's heap is never freed at the unload (about 70 kB per load).
+/// and a static's heap is never freed at the unload (84 kB per load).
 pub fn table() -> Result<Vec<Row>> {
     parse(TABLE_CSV, "data/accuracy.csv").map_err(|e| CreepError::Config {
         source_name: "creep-core accuracy table".into(),
