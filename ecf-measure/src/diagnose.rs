@@ -689,6 +689,13 @@ fn search_words(
             c.finalists_cut
         );
     }
+    // the best screened form and the best finalist are fitted however long they take
+    if s.past_bound_s >= 1.0 {
+        bound += &format!(
+            "; it ended {:.0} s past the time bound of {search_seconds:.0} s, fitting the forms it always fits (a busy machine, or a fine grid)",
+            s.past_bound_s
+        );
+    }
     let head = format!(
         " Search of formula forms: {} of {} screened on the factor each row needs, the best {} refitted on the folds with their own parameters and the target's level, the best {} of those with every free parameter, in {:.0} s{bound}.",
         s.tried, s.total, c.shortlisted, c.finalists, s.seconds
@@ -806,6 +813,7 @@ mod tests {
             tried: 1,
             total: 1,
             seconds: 1.0,
+            past_bound_s: 0.0,
             cost: crate::search::SearchCost {
                 shortlisted: 1,
                 finalists: 1,
@@ -831,6 +839,10 @@ mod tests {
             f.factor_range = [0.22, 62.0];
         }
         assert!(words(&s).contains("(282-fold)"), "{}", words(&s));
+        // a search that ended past its time bound says so
+        assert!(!words(&s).contains("past the time bound"));
+        s.past_bound_s = 41.0;
+        assert!(words(&s).contains("it ended 41 s past the time bound of 50 s"));
     }
 
     /// The grid chosen for a preset at a noise level (%): `None` keeps the preset's 80 x 21.

@@ -220,6 +220,9 @@ pub struct Search {
     pub total: usize,
     /// Time spent, s.
     pub seconds: f64,
+    /// Seconds by which the search ended past its time bound (0 within it): the best
+    /// screened form and the best finalist are fitted however long they take.
+    pub past_bound_s: f64,
     /// Where the time went.
     pub cost: SearchCost,
     /// The best form, when it earns a proposal (module doc).
@@ -470,6 +473,9 @@ pub(crate) fn search(
         tried: total,
         total,
         seconds: s.elapsed(),
+        past_bound_s: std::time::Instant::now()
+            .saturating_duration_since(deadline)
+            .as_secs_f64(),
         cost,
         proposed: proposed_at.map(finalist),
         proposed_config: proposed_at.map(|j| finals[j].fit.config.to_json()),

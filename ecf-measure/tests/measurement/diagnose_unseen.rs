@@ -117,3 +117,31 @@ fn nothing_missing_nothing_proposed_with_a_bulk_temperature_per_curve() {
         assert!(proposed.is_none(), "{preset} seed {seed}: {}", d.verdict);
     }
 }
+
+#[test]
+fn a_search_that_passes_its_time_bound_says_so() {
+    // a bound of 1 s from the start of the diagnosis: the forms the search always fits take
+    // longer, and the verdict says by how much the bound was passed
+    let c = hidden::cases()
+        .into_iter()
+        .find(|c| c.name == "speed-reciprocal-strengths")
+        .expect("case");
+    let truth = hidden::truth(c.preset, c.target, Some(c.factor));
+    let (data, _) = hidden::file(&truth, c.column, c.distractor, 12);
+    let cfg = creep_core::Config::preset(c.preset).unwrap();
+    let o = Options {
+        search_seconds: 1.0,
+        ..Options::new(2)
+    };
+    let d = diagnose_opts(&cfg, &data, &o, &|_| {}).unwrap();
+    let s = d.search.as_ref().expect("the search runs");
+    assert!(s.past_bound_s >= 1.0, "{}", d.verdict);
+    assert!(
+        d.verdict.contains(&format!(
+            "it ended {:.0} s past the time bound of 1 s",
+            s.past_bound_s
+        )),
+        "{}",
+        d.verdict
+    );
+}
