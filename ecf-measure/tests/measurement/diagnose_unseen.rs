@@ -20,7 +20,18 @@ fn check_case(name: &str, seed: u64) {
     check_case_in(&hidden::Layout::standard(), name, seed);
 }
 
-fn check_case_in(layout: &hidden::Layout, name: &str, seed: u64) {
+/// Hidden case `name`, its file in `layout` with noise from `seed`, the noise-free values and
+/// the configuration under test (the case's preset).
+fn case_file(
+    layout: &hidden::Layout,
+    name: &str,
+    seed: u64,
+) -> (
+    hidden::Case,
+    ecf_measure::measure::Dataset,
+    Vec<f64>,
+    creep_core::Config,
+) {
     let c = hidden::cases()
         .into_iter()
         .find(|c| c.name == name)
@@ -28,6 +39,11 @@ fn check_case_in(layout: &hidden::Layout, name: &str, seed: u64) {
     let truth = hidden::truth(c.preset, c.target, Some(c.factor));
     let (data, clean) = hidden::file_in(layout, &truth, c.column, c.distractor, seed);
     let cfg = creep_core::Config::preset(c.preset).unwrap();
+    (c, data, clean, cfg)
+}
+
+fn check_case_in(layout: &hidden::Layout, name: &str, seed: u64) {
+    let (c, data, clean, cfg) = case_file(layout, name, seed);
     let d = diagnose_opts(&cfg, &data, &opts(), &|_| {}).unwrap();
     eprintln!("{name}: {}", d.verdict);
     assert!(d.model_grid.is_some(), "the loop grid runs the model");
@@ -92,43 +108,40 @@ fn a_threshold_in_the_bulk_temperature_is_found() {
     check_case("bulk-threshold-tau_c2", 11);
 }
 
-#[test]
-fn nothing_missing_nothing_proposed_over_noise_seeds() {
-    for (preset, seed) in [("dry", 31), ("table4.1", 32), ("wet", 33)] {
+/// Files of the presets dry, table4.1 and wet with nothing missing (seeds `seeds`), each with
+/// `column` and a distractor: the diagnosis proposes nothing.
+fn nothing_proposed(column: (&str, f64, f64), seeds: [u64; 3]) {
+    for (preset, seed) in ["dry", "table4.1", "wet"].into_iter().zip(seeds) {
         let truth = hidden::truth(preset, "tau_c1", None);
-        let (data, _) = hidden::file(&truth, Some(("humidity", 20.0, 80.0)), true, seed);
+        let (data, _) = hidden::file(&truth, Some(column), true, seed);
         let cfg = creep_core::Config::preset(preset).unwrap();
         let d = diagnose_opts(&cfg, &data, &opts(), &|_| {}).unwrap();
         let proposed = d.search.as_ref().and_then(|s| s.proposed.as_ref());
         assert!(proposed.is_none(), "{preset} seed {seed}: {}", d.verdict);
     }
+}
+
+#[test]
+fn nothing_missing_nothing_proposed_over_noise_seeds() {
+    nothing_proposed(("humidity", 20.0, 80.0), [31, 32, 33]);
 }
 
 #[test]
 fn nothing_missing_nothing_proposed_with_a_bulk_temperature_per_curve() {
     // t_bulk_C varies (0-50 degC per curve) and is a variable of the search: the truth is the
     // preset at those temperatures, nothing is missing
-    for (preset, seed) in [("dry", 41), ("table4.1", 42), ("wet", 43)] {
-        let truth = hidden::truth(preset, "tau_c1", None);
-        let (data, _) = hidden::file(&truth, Some((hidden::BULK, 0.0, 50.0)), true, seed);
-        let cfg = creep_core::Config::preset(preset).unwrap();
-        let d = diagnose_opts(&cfg, &data, &opts(), &|_| {}).unwrap();
-        let proposed = d.search.as_ref().and_then(|s| s.proposed.as_ref());
-        assert!(proposed.is_none(), "{preset} seed {seed}: {}", d.verdict);
-    }
+    nothing_proposed((hidden::BULK, 0.0, 50.0), [41, 42, 43]);
 }
 
 #[test]
 fn a_search_that_passes_its_time_bound_says_so() {
     // a bound of 1 s from the start of the diagnosis: the forms the search always fits take
     // longer, and the verdict says by how much the bound was passed
-    let c = hidden::cases()
-        .into_iter()
-        .find(|c| c.name == "speed-reciprocal-strengths")
-        .expect("case");
-    let truth = hidden::truth(c.preset, c.target, Some(c.factor));
-    let (data, _) = hidden::file(&truth, c.column, c.distractor, 12);
-    let cfg = creep_core::Config::preset(c.preset).unwrap();
+    let (_, data, _, cfg) = case_file(
+        &hidden::Layout::standard(),
+        "speed-reciprocal-strengths",
+        12,
+    );
     let o = Options {
         search_seconds: 1.0,
         ..Options::new(2)
